@@ -1,0 +1,135 @@
+// SPDX-License-Identifier: MIT
+// frame.h — the value types that describe one frame for raster/: textures (cube maps and 2D
+// textures, RGBA8, every MIP level given explicitly), sampler state, passes of clip-space
+// triangles, blend state. A Frame is what a raster case file (viewer_tty/case_file.h) holds and
+// what both pemref's rasterizer and the OpenGL reference harness (pemref-gl) render.
+//
+// Conventions (shared by every module):
+//  - Cube faces in GL order: 0 +X, 1 -X, 2 +Y, 3 -Y, 4 +Z, 5 -Z (GL 4.6 table 8.19).
+//  - Texel (i, j) of a face or 2D level: i = column along s, j = row along t; byte offset
+//    ((j * size + i) * 4) inside that face/level image, exactly what glTexImage2D receives.
+//  - Images (Image8, ImageF) are stored rows top-down: row 0 is the top of the picture, which is
+//    GL window y = height - 1 (glReadPixels rows reversed).
+// Not here: parsing (viewer_tty/case_file.h), rendering (raster/render.h).
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <glm/glm.hpp>
+#include <string>
+#include <vector>
+
+namespace pem::raster {
+
+// Texture sampling state ---------------------------------------------------------------------
+
+enum class Filter { Nearest, Linear };
+enum class MipFilter { None, Nearest, Linear };  // GL min filter = (Filter, MipFilter)
+enum class Wrap { ClampToEdge, Repeat, MirroredRepeat };
+
+struct SamplerState {
+    Filter minFilter = Filter::Linear;
+    MipFilter mipFilter = MipFilter::Linear;  // linear_mipmap_linear by default
+    Filter magFilter = Filter::Linear;
+    Wrap wrapS = Wrap::ClampToEdge, wrapT = Wrap::ClampToEdge;  // 2D only; cubes clamp
+    bool seamless = true;                                       // cube maps only
+    float lodBias = 0.0f, minLod = -1000.0f, maxLod = 1000.0f;
+    bool operator==(const SamplerState&) const = default;
+};
+
+enum class TextureKind { Cube, Tex2D };
+
+// An RGBA8 texture with every MIP level given explicitly (levels[l] has max(1, w>>l) by
+// max(1, h>>l) texels per face; 6 faces for a cube, 1 for 2D). Sizes are powers of two.
+struct Texture {
+    TextureKind kind = TextureKind::Cube;
+    int width = 1, height = 1;  // level 0; a cube has width == height
+    SamplerState sampler;
+    std::vector<std::vector<uint8_t>> levels;  // levels[l]: faces * h_l * w_l * 4 bytes
+
+    int Faces() const { return kind == TextureKind::Cube ? 6 : 1; }
+    int NumLevels() const { return static_cast<int>(levels.size()); }
+    int LevelWidth(int l) const { return std::max(1, width >> l); }
+    int LevelHeight(int l) const { return std::max(1, height >> l); }
+    bool operator==(const Texture&) const = default;
+};
+
+// Blending -----------------------------------------------------------------------------------
+
+enum class BlendFactor {
+    Zero, One, SrcColor, OneMinusSrcColor, DstColor, OneMinusDstColor,
+    SrcAlpha, OneMinusSrcAlpha, DstAlpha, OneMinusDstAlpha, SrcAlphaSaturate
+};
+enum class BlendEquation { Add, Subtract, ReverseSubtract, Min, Max };
+
+struct BlendState {
+    bool enabled = false;
+    BlendFactor srcRgb = BlendFactor::One, dstRgb = BlendFactor::Zero;
+    BlendFactor srcAlpha = BlendFactor::One, dstAlpha = BlendFactor::Zero;
+    BlendEquation eqRgb = BlendEquation::Add, eqAlpha = BlendEquation::Add;
+    bool operator==(const BlendState&) const = default;
+
+    static BlendState None() { return {}; }
+    static BlendState Over();      // SRC_ALPHA, ONE_MINUS_SRC_ALPHA for rgb and alpha
+    static BlendState Additive();  // ONE, ONE
+    static BlendState Multiply();  // DST_COLOR, ZERO
+};
+
+// Geometry -----------------------------------------------------------------------------------
+
+constexpr int kMaxUnits = 2;  // textures sampled per pass (the papers' two-texture hardware)
+
+// One vertex: clip-space position, one texture coordinate per unit (a cube direction rx,ry,rz,
+// any length; or 2D s,t with the third component ignored), and the modulating colour.
+struct Vertex {
+    glm::vec4 pos{0.0f, 0.0f, 0.0f, 1.0f};
+    std::array<glm::vec3, kMaxUnits> coord{};
+    glm::vec4 color{1.0f};
+    bool operator==(const Vertex&) const = default;
+};
+
+// A draw call: triangles (index triples, or consecutive vertex triples when indices is empty),
+// fragment colour = texture(unit0) * texture(unit1) * colour, units that are absent dropped
+// (GLSL: o_col = texture(u0, c0) * texture(u1, c1) * v_col, evaluated left to right).
+struct Pass {
+    int numUnits = 1;                          // 0, 1 or 2
+    std::array<int, kMaxUnits> texture{0, 0};  // index into Frame::textures per unit
+    BlendState blend;
+    std::vector<Vertex> vertices;
+    std::vector<uint32_t> indices;
+    int NumTriangles() const {
+        return static_cast<int>((indices.empty() ? vertices.size() : indices.size()) / 3);
+    }
+    bool operator==(const Pass&) const = default;
+};
+
+// One frame: a cleared RGBA8 framebuffer and passes drawn in order, no depth test, no culling,
+// viewport (0, 0, width, height), depth range [0, 1], clip volume -w <= x, y, z <= w (z not
+// clipped with depthClamp).
+struct Frame {
+    int width = 1, height = 1;
+    std::array<uint8_t, 4> clear{0, 0, 0, 0};
+    bool depthClamp = false;
+    std::vector<Texture> textures;  // cube maps and 2D textures, referenced by Pass::texture
+    std::vector<Pass> passes;
+    bool operator==(const Frame&) const = default;
+};
+
+// Images -------------------------------------------------------------------------------------
+
+// RGBA8 pixels, rows top-down, 4 bytes per pixel.
+struct Image8 {
+    int width = 0, height = 0;
+    std::vector<uint8_t> rgba;
+    bool operator==(const Image8&) const = default;
+};
+
+// Float RGBA pixels, rows top-down (the `linear` profile's float framebuffer).
+struct ImageF {
+    int width = 0, height = 0;
+    std::vector<float> rgba;
+    bool operator==(const ImageF&) const = default;
+};
+
+}  // namespace pem::raster

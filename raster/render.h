@@ -1,0 +1,83 @@
+// SPDX-License-Identifier: MIT
+// render.h — draw a Frame the way the target graphics system does, and report texel taps.
+//
+//   RenderOptions opt;                       // profile llvmpipe, 1 thread
+//   PreparedFrame prepared(frame);           // texel conversion, done once (like a GL upload)
+//   Image8 img = Render(prepared, opt).image8;
+//   RenderingMatrix A = BuildRenderingMatrix(prepared, opt);   // same code path, with taps
+//
+// Profiles:
+//  - Llvmpipe: bit-exact to Mesa 22.3.6 llvmpipe (LLVM 15, x86-64 host with FMA) rendering the
+//    frame into an RGBA8 FBO (docs/raster-model.md lists every rule and its source).
+//  - Linear: the same rasterization, texel selection and weights, but no intermediate rounding:
+//    float texels c/255, float filtering, float framebuffer and float blending; the result is
+//    exactly linear in the texels (ImageF), and Image8 is its RNE conversion.
+// Threads split the frame into bands of whole 2x2-quad rows; each pixel is written by one
+// thread in primitive order, so the bytes do not depend on the thread count.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "raster/frame.h"
+#include "raster/texel_index.h"
+
+namespace pem::raster {
+
+enum class Profile { Llvmpipe, Linear };
+enum class UnormRounding { HalfEven, HalfUp };  // RNE(f*255) (GL/llvmpipe) or D3D's floor(+0.5)
+enum class CubeLod { Llvmpipe, Exact };         // llvmpipe's fast log2 / GL-spec exact log2
+
+struct RenderOptions {
+    Profile profile = Profile::Llvmpipe;
+    UnormRounding rounding = UnormRounding::HalfEven;
+    CubeLod cubeLod = CubeLod::Llvmpipe;
+    int threads = 1;
+};
+
+// Textures converted once for sampling (float copies for the float paths).
+struct PreparedTexture {
+    const Texture* source = nullptr;
+    std::vector<std::vector<float>> levelsF;  // c * fl(1/255) per byte (llvmpipe's conversion)
+    std::vector<std::vector<float>> levelsExact;  // c / 255 in float (linear profile)
+};
+
+class PreparedFrame {
+public:
+    explicit PreparedFrame(const Frame& frame);
+    const Frame& frame() const { return *frame_; }
+    const PreparedTexture& texture(int i) const { return textures_[static_cast<size_t>(i)]; }
+    const TexelIndexer& indexer() const { return indexer_; }
+
+private:
+    const Frame* frame_;
+    std::vector<PreparedTexture> textures_;
+    TexelIndexer indexer_;
+};
+
+struct RenderResult {
+    Image8 image8;  // always
+    ImageF imageF;  // Linear profile: the float framebuffer (values may exceed [0, 1])
+};
+
+RenderResult Render(const PreparedFrame& frame, const RenderOptions& options);
+
+// The rendering matrix of a frame whose passes are linear in the texels (texel_index.h numbers
+// rows and columns): rendered = A * x + offset, x = texel bytes / 255 over all textures, rows per
+// (pixel, channel). A pass contributes the taps of its unit 0; unit 1 and the vertex colour are
+// folded into the weights. Passes must blend with "none", "add", or (untextured passes only) a
+// destination-affine blend; otherwise BuildRenderingMatrix throws std::invalid_argument.
+// In the Linear profile `rendered` equals A * x + offset to float rounding; in the Llvmpipe
+// profile it is the 8-bit frame / 255 (render_matrix.h states the bound).
+struct RenderingMatrix {
+    int64_t rows = 0, cols = 0;
+    std::vector<int64_t> rowPtr;  // CSR, rows + 1 entries
+    std::vector<uint32_t> col;
+    std::vector<double> val;
+    std::vector<double> offset;    // constant term per row (clear colour, untextured passes)
+    std::vector<double> rendered;  // the frame as rendered, per row, in [0, 1] units
+};
+
+RenderingMatrix BuildRenderingMatrix(const PreparedFrame& frame, const RenderOptions& options);
+
+}  // namespace pem::raster

@@ -1,0 +1,111 @@
+// SPDX-License-Identifier: MIT
+// sampler.cpp — texture lookups of eight lanes (sampler.h): derivatives, face selection, LOD,
+// then llvmpipe's float ("SoA") or 8-bit ("AoS") filtering path, whichever it would take.
+#include "raster/sampler.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "raster/cube_lookup.h"
+#include "raster/lod.h"
+#include "raster/numeric.h"
+#include "raster/sampler_paths.h"
+
+namespace pem::raster {
+namespace {
+
+// Fine quad differences: ddx = right - left within the lane's row, ddy = bottom - top within
+// its column (bottom = larger raster y).
+void FineDerivatives(const LaneCoords& c, int lane, Vec3f* ddx, Vec3f* ddy) {
+    const int q = lane & ~3, p = lane & 3;
+    const int left = q + (p & 2), right = left + 1;
+    const int top = q + (p & 1), bottom = top + 2;
+    for (int k = 0; k < 3; ++k) {
+        (*ddx)[k] = c.c[right][k] - c.c[left][k];
+        (*ddy)[k] = c.c[bottom][k] - c.c[top][k];
+    }
+}
+
+}  // namespace
+
+bool UsesAosPath(const Texture& t) {
+    const SamplerState& s = t.sampler;
+    const bool cube = t.kind == TextureKind::Cube;
+    // AoS needs one LOD per quad or equal min/mag filters; cubes with a MIP filter have
+    // per-pixel LODs.
+    const bool perPixelLod = cube && s.mipFilter != MipFilter::None;
+    if (perPixelLod && s.minFilter != s.magFilter) return false;
+    if (cube && s.seamless && (s.minFilter == Filter::Linear || s.magFilter == Filter::Linear))
+        return false;
+    // Only repeat and clamp-to-edge are "simple" wraps (cubes always clamp).
+    const auto simple = [](Wrap w) { return w != Wrap::MirroredRepeat; };
+    return cube || (simple(s.wrapS) && simple(s.wrapT));
+}
+
+void SampleLanes(const PreparedFrame& frame, int textureIndex, const RenderOptions& options,
+                 const LaneCoords& coords, std::array<RgbaF, kLanes>* colour,
+                 std::array<PixelTaps, kLanes>* taps) {
+    const PreparedTexture& pt = frame.texture(textureIndex);
+    const Texture& tex = *pt.source;
+    const SamplerState& s = tex.sampler;
+    const PipeLodState lodState = DerivePipeLodState(s, tex.NumLevels());
+    const bool needLod = s.mipFilter != MipFilter::None || s.minFilter != s.magFilter;
+    const bool exact = options.cubeLod == CubeLod::Exact;
+
+    // Coordinates on the texture and LOD per lane.
+    LaneSample ls;
+    ls.texture = textureIndex;
+    if (tex.kind == TextureKind::Cube) {
+        const bool withDerivs = needLod && !lodState.minMaxEqual;
+        const float n = static_cast<float>(tex.width);
+        for (int l = 0; l < kLanes; ++l) {
+            Vec3f ddx{}, ddy{};
+            const Vec3f dir{coords.c[l][0], coords.c[l][1], coords.c[l][2]};
+            if (withDerivs) FineDerivatives(coords, l, &ddx, &ddy);
+            const CubeCoord cc = CubeLookup(dir, ddx, ddy, withDerivs);
+            ls.face[l] = cc.face;
+            ls.s[l] = cc.s;
+            ls.t[l] = cc.t;
+            if (!needLod) continue;
+            float rho = 0.0f;
+            if (withDerivs) {
+                const float xs = n * cc.dsdx, xt = n * cc.dtdx;
+                const float ys = n * cc.dsdy, yt = n * cc.dtdy;
+                const float rx = xs * xs + xt * xt, ry = ys * ys + yt * yt;
+                rho = rx > ry ? rx : ry;  // maxps
+                if (!std::isfinite(rho)) rho = 0.0f;
+            }
+            ls.lod[l] = SelectLod(rho, lodState, s.mipFilter, tex.NumLevels(), exact);
+        }
+    } else {
+        // 2D: coarse derivatives per quad from its top-left pixel, one LOD per quad.
+        const float w = static_cast<float>(tex.width), h = static_cast<float>(tex.height);
+        for (int q = 0; q < kLanes; q += 4) {
+            LodResult lod;
+            if (needLod) {
+                const auto& tl = coords.c[q];
+                const auto& tr = coords.c[q + 1];
+                const auto& bl = coords.c[q + 2];
+                const float dsdx = (tr[0] - tl[0]) * w, dsdy = (bl[0] - tl[0]) * w;
+                const float dtdx = (tr[1] - tl[1]) * h, dtdy = (bl[1] - tl[1]) * h;
+                const float rx = dsdx * dsdx + dtdx * dtdx, ry = dsdy * dsdy + dtdy * dtdy;
+                float rho = rx > ry ? rx : ry;
+                lod = SelectLod(rho, lodState, s.mipFilter, tex.NumLevels(), exact);
+            }
+            for (int p = 0; p < 4; ++p) {
+                ls.s[q + p] = coords.c[q + p][0];
+                ls.t[q + p] = coords.c[q + p][1];
+                ls.face[q + p] = 0;
+                ls.lod[q + p] = lod;
+            }
+        }
+    }
+
+    // Filtering.
+    if (options.profile == Profile::Linear || !UsesAosPath(tex))
+        FilterFloat(frame, tex, pt, options.profile == Profile::Linear, ls, colour, taps);
+    else
+        FilterFixed8(frame, tex, pt, ls, colour, taps);
+}
+
+}  // namespace pem::raster

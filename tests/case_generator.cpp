@@ -1,0 +1,542 @@
+// SPDX-License-Identifier: MIT
+#include "tests/case_generator.h"
+
+#include <cmath>
+#include <cstdint>
+#include <glm/gtc/matrix_transform.hpp>
+#include <string>
+
+namespace pem::test {
+namespace {
+
+using raster::BlendEquation;
+using raster::BlendFactor;
+using raster::BlendState;
+using raster::Filter;
+using raster::Frame;
+using raster::MipFilter;
+using raster::Pass;
+using raster::SamplerState;
+using raster::Texture;
+using raster::TextureKind;
+using raster::Vertex;
+using raster::Wrap;
+
+// splitmix64: the same stream as the case format's "random" texel generator.
+struct Rng {
+    uint64_t state;
+    uint64_t Next() {
+        uint64_t z = (state += 0x9E3779B97F4A7C15ull);
+        z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+        z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+        return z ^ (z >> 31);
+    }
+    float Uniform(float a, float b) {
+        const float u = static_cast<float>(Next() >> 40) * (1.0f / 16777216.0f);
+        return a + (b - a) * u;
+    }
+    int Int(int n) { return static_cast<int>(Next() % static_cast<uint64_t>(n)); }
+};
+
+int Log2(int n) {
+    int l = 0;
+    while ((1 << (l + 1)) <= n) ++l;
+    return l;
+}
+
+// A texture with every level random (alphaRandom: alpha random too, else 255).
+Texture MakeTexture(TextureKind kind, int w, int h, const SamplerState& s, uint64_t seed,
+                    bool alphaRandom = false) {
+    Texture t;
+    t.kind = kind;
+    t.width = w;
+    t.height = h;
+    t.sampler = s;
+    Rng rng{seed};
+    const int levels = Log2(std::max(w, h)) + 1;
+    for (int l = 0; l < levels; ++l) {
+        std::vector<uint8_t> bytes(static_cast<size_t>(t.Faces() * t.LevelWidth(l) *
+                                                       t.LevelHeight(l) * 4));
+        for (size_t i = 0; i < bytes.size(); i += 4) {
+            const uint64_t v = rng.Next();
+            bytes[i] = static_cast<uint8_t>(v);
+            bytes[i + 1] = static_cast<uint8_t>(v >> 8);
+            bytes[i + 2] = static_cast<uint8_t>(v >> 16);
+            bytes[i + 3] = alphaRandom ? static_cast<uint8_t>(v >> 24) : 255;
+        }
+        t.levels.push_back(std::move(bytes));
+    }
+    return t;
+}
+
+Texture Cube(int size, const SamplerState& s, uint64_t seed, bool alphaRandom = false) {
+    return MakeTexture(TextureKind::Cube, size, size, s, seed, alphaRandom);
+}
+
+SamplerState Sampler(Filter min, MipFilter mip, Filter mag, bool seamless = true) {
+    SamplerState s;
+    s.minFilter = min;
+    s.mipFilter = mip;
+    s.magFilter = mag;
+    s.seamless = seamless;
+    return s;
+}
+
+Vertex V(glm::vec4 pos, glm::vec3 c0, glm::vec4 col = glm::vec4(1.0f),
+         glm::vec3 c1 = glm::vec3(0.0f)) {
+    Vertex v;
+    v.pos = pos;
+    v.coord[0] = c0;
+    v.coord[1] = c1;
+    v.color = col;
+    return v;
+}
+
+// Two triangles covering the clip rectangle [x0,x1]x[y0,y1] at w = 1 with per-corner coords.
+void AddQuad(Pass* p, float x0, float y0, float x1, float y1, const glm::vec3 c[4],
+             const glm::vec4& col = glm::vec4(1.0f), const glm::vec3* c1 = nullptr) {
+    const glm::vec4 pos[4] = {{x0, y0, 0, 1}, {x1, y0, 0, 1}, {x1, y1, 0, 1}, {x0, y1, 0, 1}};
+    const int idx[6] = {0, 1, 2, 0, 2, 3};
+    for (int k : idx) p->vertices.push_back(V(pos[k], c[k], col, c1 ? c1[k] : glm::vec3(0)));
+}
+
+// A UV sphere seen by a perspective camera, texture coordinate = reflection vector * scale.
+void AddSphere(Pass* p, int rings, int segs, float aspect, const glm::vec3& eye,
+               const glm::vec3& centre, float radius, float dirScale, Rng* jitter = nullptr) {
+    const glm::mat4 proj = glm::perspective(glm::radians(40.0f), aspect, 0.1f, 100.0f);
+    const glm::mat4 view = glm::lookAt(eye, glm::vec3(0.0f), glm::vec3(0, 1, 0));
+    const glm::mat4 vp = proj * view;
+    auto vertex = [&](int i, int j) {
+        const float th = 3.14159265f * static_cast<float>(i) / static_cast<float>(rings);
+        const float ph = 6.28318531f * static_cast<float>(j) / static_cast<float>(segs);
+        const glm::vec3 n(std::sin(th) * std::cos(ph), std::cos(th), std::sin(th) * std::sin(ph));
+        const glm::vec3 pos = centre + radius * n;
+        const glm::vec3 in = glm::normalize(pos - eye);
+        glm::vec3 r = in - 2.0f * glm::dot(n, in) * n;
+        if (jitter) r += glm::vec3(jitter->Uniform(-0.02f, 0.02f), 0.0f, 0.0f);
+        return V(vp * glm::vec4(pos, 1.0f), r * dirScale);
+    };
+    for (int i = 0; i < rings; ++i)
+        for (int j = 0; j < segs; ++j) {
+            const Vertex a = vertex(i, j), b = vertex(i + 1, j), c = vertex(i + 1, j + 1),
+                         d = vertex(i, j + 1);
+            const uint32_t base = static_cast<uint32_t>(p->vertices.size());
+            for (const Vertex& v : {a, b, c, d}) p->vertices.push_back(v);
+            for (uint32_t k : {0u, 1u, 2u, 0u, 2u, 3u}) p->indices.push_back(base + k);
+        }
+}
+
+Frame NewFrame(int w, int h, std::array<uint8_t, 4> clear = {0, 0, 0, 255}) {
+    Frame f;
+    f.width = w;
+    f.height = h;
+    f.clear = clear;
+    return f;
+}
+
+const char* FilterName(Filter min, MipFilter mip) {
+    static const char* names[2][3] = {
+        {"nearest", "nearest_mipmap_nearest", "nearest_mipmap_linear"},
+        {"linear", "linear_mipmap_nearest", "linear_mipmap_linear"}};
+    return names[min == Filter::Linear][static_cast<int>(mip)];
+}
+
+// Reflective spheres with every filter combination, seamless and not. --------------------------
+void Spheres(std::vector<NamedCase>* out) {
+    const Filter filters[2] = {Filter::Nearest, Filter::Linear};
+    const MipFilter mips[3] = {MipFilter::None, MipFilter::Nearest, MipFilter::Linear};
+    uint64_t seed = 100;
+    for (bool seamless : {true, false})
+        for (Filter min : filters)
+            for (MipFilter mip : mips)
+                for (Filter mag : filters) {
+                    Frame f = NewFrame(96, 80);
+                    f.textures.push_back(Cube(32, Sampler(min, mip, mag, seamless), ++seed));
+                    Pass p;
+                    AddSphere(&p, 24, 32, 96.0f / 80.0f, {0.3f, 0.8f, 3.2f}, {0, 0, 0}, 1.0f,
+                              1.0f);
+                    f.passes.push_back(p);
+                    out->push_back({std::string("sphere_") + FilterName(min, mip) + "_mag_" +
+                                        (mag == Filter::Linear ? "linear" : "nearest") +
+                                        (seamless ? "_seamless" : "_plain"),
+                                    f});
+                }
+    // A large cube (strong minification at the rim) and a tiny one (magnification).
+    for (int size : {256, 2}) {
+        Frame f = NewFrame(128, 96);
+        f.textures.push_back(Cube(size, Sampler(Filter::Linear, MipFilter::Linear, Filter::Linear),
+                                  ++seed));
+        Pass p;
+        AddSphere(&p, 40, 48, 128.0f / 96.0f, {-0.5f, 1.2f, 2.6f}, {0, 0, 0}, 1.0f, 1.0f);
+        f.passes.push_back(p);
+        out->push_back({"sphere_cube" + std::to_string(size), f});
+    }
+}
+
+// Random triangles whose directions cluster around cube edges and corners. ----------------------
+void EdgesAndCorners(std::vector<NamedCase>* out) {
+    Rng rng{7};
+    for (int k = 0; k < 12; ++k) {
+        const bool seamless = k % 3 != 2;
+        const int size = 1 << (k % 4);  // 1, 2, 4, 8
+        const MipFilter mip = k % 2 ? MipFilter::Linear : MipFilter::None;
+        Frame f = NewFrame(64, 64);
+        f.textures.push_back(Cube(size, Sampler(Filter::Linear, mip, Filter::Linear, seamless),
+                                  1000 + static_cast<uint64_t>(k)));
+        Pass p;
+        for (int t = 0; t < 24; ++t) {
+            // A corner (+-1, +-1, +-1) or an edge midpoint, perturbed per vertex.
+            glm::vec3 base(rng.Int(2) ? 1.0f : -1.0f, rng.Int(2) ? 1.0f : -1.0f,
+                           rng.Int(2) ? 1.0f : -1.0f);
+            if (rng.Int(2)) base[rng.Int(3)] = 0.0f;
+            for (int v = 0; v < 3; ++v) {
+                const glm::vec4 pos(rng.Uniform(-1.2f, 1.2f), rng.Uniform(-1.2f, 1.2f),
+                                    rng.Uniform(-0.5f, 0.5f), rng.Uniform(0.8f, 1.5f));
+                const glm::vec3 d = base + glm::vec3(rng.Uniform(-0.3f, 0.3f),
+                                                     rng.Uniform(-0.3f, 0.3f),
+                                                     rng.Uniform(-0.3f, 0.3f));
+                p.vertices.push_back(V(pos, d, glm::vec4(1.0f)));
+            }
+        }
+        f.passes.push_back(p);
+        out->push_back({"edges_corners_" + std::to_string(k) + (seamless ? "_seamless" : "_plain") +
+                            "_n" + std::to_string(size),
+                        f});
+    }
+}
+
+// Minification (directions sweep the whole cube across the screen) and magnification. --------
+void MinMag(std::vector<NamedCase>* out) {
+    const glm::vec3 sweep[4] = {{-3, -2, 1}, {3, -2, 1}, {2, 3, -1}, {-2, 3, -1}};
+    const glm::vec3 zoom[4] = {{-0.02f, -0.02f, 1}, {0.03f, -0.02f, 1}, {0.03f, 0.02f, 1},
+                               {-0.02f, 0.03f, 1}};
+    for (bool mag : {false, true}) {
+        for (MipFilter mip : {MipFilter::Linear, MipFilter::Nearest, MipFilter::None}) {
+            Frame f = NewFrame(80, 64);
+            f.textures.push_back(Cube(mag ? 4 : 128, Sampler(Filter::Linear, mip, Filter::Linear),
+                                      mag ? 77 : 78));
+            Pass p;
+            AddQuad(&p, -1, -1, 1, 1, mag ? zoom : sweep);
+            f.passes.push_back(p);
+            out->push_back({std::string(mag ? "magnify_" : "minify_") +
+                                FilterName(Filter::Linear, mip),
+                            f});
+        }
+    }
+}
+
+// 2D textures: every min/mag filter and wrap on a perspective quad, and a 1D table. ---------
+void Textures2D(std::vector<NamedCase>* out) {
+    const Filter filters[2] = {Filter::Nearest, Filter::Linear};
+    const MipFilter mips[3] = {MipFilter::None, MipFilter::Nearest, MipFilter::Linear};
+    const Wrap wraps[3] = {Wrap::ClampToEdge, Wrap::Repeat, Wrap::MirroredRepeat};
+    const char* wrapNames[3] = {"clamp", "repeat", "mirror"};
+    uint64_t seed = 500;
+    for (int wi = 0; wi < 3; ++wi)
+        for (Filter min : filters)
+            for (MipFilter mip : mips)
+                for (Filter mag : filters) {
+                    Frame f = NewFrame(64, 48);
+                    SamplerState s = Sampler(min, mip, mag);
+                    s.wrapS = wraps[wi];
+                    s.wrapT = wraps[(wi + 1) % 3];
+                    f.textures.push_back(MakeTexture(TextureKind::Tex2D, 16, 8, s, ++seed));
+                    Pass p;
+                    // Perspective: the far edge (top) has a larger w.
+                    const glm::vec3 c[4] = {{-1.5f, -0.5f, 0}, {2.5f, -0.5f, 0},
+                                            {2.5f, 1.7f, 0}, {-1.5f, 1.7f, 0}};
+                    const glm::vec4 pos[4] = {{-1, -1, 0, 1}, {1, -1, 0, 1}, {3.5f, 3.5f, 0, 4},
+                                              {-3.5f, 3.5f, 0, 4}};
+                    for (int k : {0, 1, 2, 0, 2, 3}) p.vertices.push_back(V(pos[k], c[k]));
+                    f.passes.push_back(p);
+                    out->push_back({std::string("tex2d_") + FilterName(min, mip) + "_mag_" +
+                                        (mag == Filter::Linear ? "linear_" : "nearest_") +
+                                        wrapNames[wi],
+                                    f});
+                }
+}
+
+// LOD bias and clamps on a minified sphere. ----------------------------------------------------
+void LodControls(std::vector<NamedCase>* out) {
+    struct Variant {
+        const char* name;
+        float bias, minLod, maxLod;
+        MipFilter mip;
+    };
+    const Variant vs[] = {{"bias_plus1_3", 1.3f, -1000, 1000, MipFilter::Linear},
+                          {"bias_minus2", -2.0f, -1000, 1000, MipFilter::Linear},
+                          {"bias_frac_nearest", 0.37f, -1000, 1000, MipFilter::Nearest},
+                          {"min_lod_1_5", 0.0f, 1.5f, 1000, MipFilter::Linear},
+                          {"max_lod_1", 0.0f, -1000, 1.0f, MipFilter::Linear},
+                          {"max_lod_14_nearest", 0.0f, -1000, 14.0f, MipFilter::Nearest},
+                          {"min_eq_max_2", 0.0f, 2.0f, 2.0f, MipFilter::Linear},
+                          {"min_gt_max", 0.0f, 3.0f, 1.0f, MipFilter::Linear}};
+    uint64_t seed = 900;
+    for (const Variant& v : vs) {
+        Frame f = NewFrame(96, 72);
+        SamplerState s = Sampler(Filter::Linear, v.mip, Filter::Linear);
+        s.lodBias = v.bias;
+        s.minLod = v.minLod;
+        s.maxLod = v.maxLod;
+        f.textures.push_back(Cube(64, s, ++seed));
+        Texture t2 = MakeTexture(TextureKind::Tex2D, 32, 32, s, ++seed);
+        t2.sampler.wrapS = t2.sampler.wrapT = Wrap::Repeat;
+        f.textures.push_back(t2);
+        Pass p;
+        AddSphere(&p, 20, 24, 96.0f / 72.0f, {0.2f, 0.5f, 4.5f}, {0, 0, 0}, 1.0f, 1.0f);
+        f.passes.push_back(p);
+        Pass q;
+        q.texture[0] = 1;
+        const glm::vec3 c[4] = {{0, 0, 0}, {6, 0, 0}, {6, 1, 0}, {0, 1, 0}};
+        AddQuad(&q, -1, -1, 1, -0.6f, c);
+        f.passes.push_back(q);
+        out->push_back({std::string("lod_") + v.name, f});
+    }
+}
+
+BlendState RandomBlend(Rng* rng) {
+    BlendState b;
+    b.enabled = true;
+    b.srcRgb = static_cast<BlendFactor>(rng->Int(11));
+    b.dstRgb = static_cast<BlendFactor>(rng->Int(11));
+    b.srcAlpha = static_cast<BlendFactor>(rng->Int(11));
+    b.dstAlpha = static_cast<BlendFactor>(rng->Int(11));
+    b.eqRgb = static_cast<BlendEquation>(rng->Int(5));
+    b.eqAlpha = static_cast<BlendEquation>(rng->Int(5));
+    return b;
+}
+
+// Multi-pass blending: named modes and random separate factors. ------------------------------
+void Blends(std::vector<NamedCase>* out) {
+    Rng rng{31337};
+    const BlendState named[4] = {BlendState::None(), BlendState::Over(), BlendState::Additive(),
+                                 BlendState::Multiply()};
+    const char* names[4] = {"none", "over", "add", "multiply"};
+    for (int k = 0; k < 4 + 16; ++k) {
+        Frame f = NewFrame(64, 64, {40, 90, 160, 200});
+        f.textures.push_back(
+            Cube(16, Sampler(Filter::Linear, MipFilter::Linear, Filter::Linear), 40 + k, true));
+        for (int pass = 0; pass < 3; ++pass) {
+            Pass p;
+            p.blend = k < 4 ? named[k] : RandomBlend(&rng);
+            if (pass == 0) p.blend = BlendState::None();
+            for (int t = 0; t < 6; ++t)
+                for (int v = 0; v < 3; ++v) {
+                    const glm::vec4 pos(rng.Uniform(-1.3f, 1.3f), rng.Uniform(-1.3f, 1.3f), 0.0f,
+                                        1.0f);
+                    const glm::vec3 d(rng.Uniform(-1, 1), rng.Uniform(-1, 1), rng.Uniform(-1, 1));
+                    const glm::vec4 col(rng.Uniform(0, 1.2f), rng.Uniform(0, 1.2f),
+                                        rng.Uniform(0, 1.2f), rng.Uniform(0, 1));
+                    p.vertices.push_back(V(pos, d, col));
+                }
+            f.passes.push_back(p);
+        }
+        out->push_back({std::string("blend_") + (k < 4 ? names[k] : "random_" + std::to_string(k)),
+                        f});
+    }
+}
+
+// Conversion and blend probes: one-pixel untextured quads with chosen colours. ---------------
+void Probes(std::vector<NamedCase>* out) {
+    const int w = 64, h = 64;  // 4096 probe pixels
+    auto pixelQuad = [&](Pass* p, int x, int y, const glm::vec4& col) {
+        const float x0 = 2.0f * static_cast<float>(x) / w - 1.0f, x1 = x0 + 2.0f / w;
+        const float y0 = 2.0f * static_cast<float>(y) / h - 1.0f, y1 = y0 + 2.0f / h;
+        const glm::vec3 c[4] = {};
+        AddQuad(p, x0, y0, x1, y1, c, col);
+    };
+    // Values: exact k/255, the float midpoints between codes (ties), near-ties, out of range.
+    std::vector<float> values;
+    for (int k = 0; k < 256; ++k) values.push_back(static_cast<float>(k) / 255.0f);
+    for (int k = 0; k < 255; ++k) {
+        const float mid = (static_cast<float>(k) + 0.5f) / 255.0f;
+        values.push_back(mid);
+        values.push_back(std::nextafter(mid, 0.0f));
+        values.push_back(std::nextafter(mid, 1.0f));
+    }
+    for (float v : {-1.0f, -0.0f, 1.0f, 1.0001f, 2.0f, 1e30f, -1e30f}) values.push_back(v);
+    Rng rng{4242};
+    for (int variant = 0; variant < 3; ++variant) {
+        Frame f = NewFrame(w, h, {128, 64, 200, 100});
+        Pass base;  // background for the blend variants
+        base.numUnits = 0;
+        if (variant > 0) {
+            for (int i = 0; i < w * h; ++i) {
+                const glm::vec4 col(rng.Uniform(0, 1), rng.Uniform(0, 1), rng.Uniform(0, 1),
+                                    rng.Uniform(0, 1));
+                pixelQuad(&base, i % w, i / w, col);
+            }
+            f.passes.push_back(base);
+        }
+        Pass p;
+        p.numUnits = 0;
+        p.blend = variant == 0 ? BlendState::None()
+                               : (variant == 1 ? BlendState::Over() : BlendState::Additive());
+        for (int i = 0; i < w * h; ++i) {
+            const float v = values[static_cast<size_t>(i) % values.size()];
+            const float a = values[static_cast<size_t>(i * 7 + 3) % values.size()];
+            pixelQuad(&p, i % w, i / w, glm::vec4(v, 1.0f - v, a, std::min(std::fabs(a), 1.0f)));
+        }
+        f.passes.push_back(p);
+        const char* names[3] = {"probe_convert", "probe_over", "probe_add"};
+        out->push_back({names[variant], f});
+    }
+}
+
+// Exact ties of the face selection, signed zeros, the zero vector. ---------------------------
+void Ties(std::vector<NamedCase>* out) {
+    const glm::vec3 dirs[] = {{1, 1, 0},    {-1, 1, 0},  {1, -1, 0},  {0, 1, 1},   {0, -1, -1},
+                              {1, 0, 1},    {-1, 0, 1},  {1, 1, 1},   {-1, -1, -1}, {1, -1, 1},
+                              {-0.0f, 0, 1}, {0, -0.0f, -1}, {-0.0f, 1, 0}, {0, 0, 0},
+                              {0.5f, 0.5f, 0.5f}};
+    Frame f = NewFrame(60, 60);
+    f.textures.push_back(Cube(4, Sampler(Filter::Linear, MipFilter::None, Filter::Linear), 5));
+    f.textures.push_back(Cube(4, Sampler(Filter::Nearest, MipFilter::None, Filter::Nearest), 6));
+    f.textures.push_back(Cube(8, Sampler(Filter::Linear, MipFilter::Linear, Filter::Linear), 8));
+    const int n = static_cast<int>(std::size(dirs));
+    for (int tex = 0; tex < 3; ++tex) {
+        Pass p;
+        p.texture[0] = tex;
+        for (int i = 0; i < n; ++i) {
+            const float x0 = -1.0f + 2.0f * static_cast<float>(i) / n, x1 = x0 + 2.0f / n;
+            const float y0 = -1.0f + 2.0f * static_cast<float>(tex) / 3, y1 = y0 + 2.0f / 3;
+            const glm::vec3 c[4] = {dirs[i], dirs[i], dirs[i], dirs[i]};
+            AddQuad(&p, x0, y0, x1, y1, c);
+        }
+        f.passes.push_back(p);
+    }
+    out->push_back({"tie_directions", f});
+    // Directions that run along an edge and through a corner within the frame.
+    Frame g = NewFrame(64, 64);
+    g.textures.push_back(Cube(8, Sampler(Filter::Linear, MipFilter::Linear, Filter::Linear), 9));
+    Pass p;
+    const glm::vec3 c[4] = {{1, 1, -1}, {1, 1, 1}, {-1, 1, 1}, {1, 1, 1}};
+    AddQuad(&p, -1, -1, 1, 1, c);
+    g.passes.push_back(p);
+    out->push_back({"tie_edge_sweep", g});
+}
+
+// Direction magnitudes from 1e-30 to 1e30 (the result must not depend on scale). ----------
+void Magnitudes(std::vector<NamedCase>* out) {
+    for (int e = -30; e <= 30; e += 10) {
+        Frame f = NewFrame(64, 64);
+        f.textures.push_back(
+            Cube(32, Sampler(Filter::Linear, MipFilter::Linear, Filter::Linear), 3));
+        Pass p;
+        AddSphere(&p, 16, 20, 1.0f, {0.2f, 0.4f, 3.0f}, {0, 0, 0}, 1.0f,
+                  std::pow(10.0f, static_cast<float>(e)));
+        f.passes.push_back(p);
+        out->push_back({"magnitude_1e" + std::string(e < 0 ? "m" : "p") + std::to_string(std::abs(e)), f});
+    }
+}
+
+// Clipping: w near zero, vertices behind the eye, huge triangles, z planes and depth clamp. ---
+void Clipping(std::vector<NamedCase>* out) {
+    Rng rng{99};
+    const char* names[4] = {"clip_w_near_zero", "clip_behind_eye", "clip_huge", "clip_depth"};
+    for (int k = 0; k < 4; ++k)
+        for (bool clamp : {false, true}) {
+            if (k < 3 && clamp) continue;
+            Frame f = NewFrame(72, 56);
+            f.depthClamp = clamp;
+            f.textures.push_back(
+                Cube(16, Sampler(Filter::Linear, MipFilter::Linear, Filter::Linear), 11));
+            Pass p;
+            for (int t = 0; t < 16; ++t)
+                for (int v = 0; v < 3; ++v) {
+                    glm::vec4 pos(rng.Uniform(-1, 1), rng.Uniform(-1, 1), rng.Uniform(-1, 1), 1);
+                    if (k == 0 && v == 0) pos.w = rng.Uniform(-1e-3f, 1e-3f);
+                    if (k == 1 && v < 2) pos.w = rng.Uniform(-2.0f, -0.1f);
+                    if (k == 2) pos = glm::vec4(glm::vec3(pos) * 1e6f, 1.0f);
+                    if (k == 3) pos.z = rng.Uniform(-3.0f, 3.0f);
+                    const glm::vec3 d(rng.Uniform(-1, 1), rng.Uniform(-1, 1), rng.Uniform(-1, 1));
+                    p.vertices.push_back(V(pos, d));
+                }
+            f.passes.push_back(p);
+            out->push_back({std::string(names[k]) + (clamp ? "_clamp" : ""), f});
+        }
+}
+
+// Two texture units: cube times a 1D table (N x 1), 2D times 2D; untextured passes. -------
+void TwoUnits(std::vector<NamedCase>* out) {
+    Frame f = NewFrame(96, 64);
+    f.textures.push_back(Cube(32, Sampler(Filter::Linear, MipFilter::Linear, Filter::Linear), 21));
+    SamplerState table = Sampler(Filter::Linear, MipFilter::None, Filter::Linear);
+    f.textures.push_back(MakeTexture(TextureKind::Tex2D, 64, 1, table, 22));
+    SamplerState tile = Sampler(Filter::Linear, MipFilter::Linear, Filter::Linear);
+    tile.wrapS = tile.wrapT = Wrap::Repeat;
+    f.textures.push_back(MakeTexture(TextureKind::Tex2D, 16, 16, tile, 23));
+    Pass p;
+    p.numUnits = 2;
+    p.texture = {0, 1};
+    Rng rng{5};
+    AddSphere(&p, 16, 24, 1.5f, {0.3f, 0.6f, 3.0f}, {0, 0, 0}, 1.0f, 1.0f);
+    for (Vertex& v : p.vertices) v.coord[1] = glm::vec3(rng.Uniform(0, 1), 0.5f, 0);
+    f.passes.push_back(p);
+    Pass q;
+    q.numUnits = 2;
+    q.texture = {2, 1};
+    q.blend = BlendState::Additive();
+    const glm::vec3 c0[4] = {{0, 0, 0}, {3, 0, 0}, {3, 2, 0}, {0, 2, 0}};
+    const glm::vec3 c1[4] = {{0, 0.5f, 0}, {1, 0.5f, 0}, {1, 0.5f, 0}, {0, 0.5f, 0}};
+    AddQuad(&q, -1, -1, 1, -0.3f, c0, glm::vec4(0.7f, 0.9f, 1.0f, 1.0f), c1);
+    f.passes.push_back(q);
+    Pass u;
+    u.numUnits = 0;
+    u.blend = BlendState::Over();
+    const glm::vec3 z[4] = {};
+    AddQuad(&u, 0.2f, 0.2f, 0.9f, 0.9f, z, glm::vec4(0.9f, 0.2f, 0.1f, 0.5f));
+    f.passes.push_back(u);
+    out->push_back({"two_units", f});
+}
+
+// Odd framebuffer sizes (quads and 4x2 lane groups cut by the edge). -------------------------
+void OddSizes(std::vector<NamedCase>* out) {
+    for (auto [w, h] : {std::pair{61, 37}, std::pair{1, 1}, std::pair{3, 5}, std::pair{127, 2}}) {
+        Frame f = NewFrame(w, h);
+        f.textures.push_back(
+            Cube(16, Sampler(Filter::Linear, MipFilter::Linear, Filter::Linear), 31));
+        Pass p;
+        AddSphere(&p, 12, 16, static_cast<float>(w) / static_cast<float>(h), {0.1f, 0.3f, 2.5f},
+                  {0, 0, 0}, 1.0f, 1.0f);
+        f.passes.push_back(p);
+        out->push_back({"odd_" + std::to_string(w) + "x" + std::to_string(h), f});
+    }
+}
+
+}  // namespace
+
+std::vector<NamedCase> ConformanceCases() {
+    std::vector<NamedCase> out;
+    Spheres(&out);
+    EdgesAndCorners(&out);
+    MinMag(&out);
+    Textures2D(&out);
+    LodControls(&out);
+    Blends(&out);
+    Probes(&out);
+    Ties(&out);
+    Magnitudes(&out);
+    Clipping(&out);
+    TwoUnits(&out);
+    OddSizes(&out);
+    return out;
+}
+
+Frame BenchmarkFrame(int width, int height, int rings, int segments, int cubeSize) {
+    Frame f = NewFrame(width, height);
+    f.textures.push_back(
+        Cube(cubeSize, Sampler(Filter::Linear, MipFilter::Linear, Filter::Linear), 2024));
+    Pass sky;
+    const glm::vec3 c[4] = {{-1.2f, -0.8f, -1}, {1.2f, -0.8f, -1}, {1.2f, 0.8f, -1},
+                            {-1.2f, 0.8f, -1}};
+    AddQuad(&sky, -1, -1, 1, 1, c);
+    f.passes.push_back(sky);
+    Pass sphere;
+    AddSphere(&sphere, rings, segments, static_cast<float>(width) / static_cast<float>(height),
+              {0.0f, 0.4f, 3.0f}, {0, 0, 0}, 1.0f, 1.0f);
+    f.passes.push_back(sphere);
+    return f;
+}
+
+}  // namespace pem::test

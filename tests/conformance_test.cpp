@@ -1,0 +1,79 @@
+// SPDX-License-Identifier: MIT
+// conformance_test.cpp — every generated case (case_generator.h) rendered by pemref's llvmpipe
+// profile must be byte-identical to Mesa llvmpipe rendering the same case file through EGL.
+// The case goes through its JSON form first (CaseToJson -> ParseCaseJson), so both renderers
+// see exactly what a case file carries. On a mismatch the case, both frames and a difference
+// mask are written to build/test_output/conformance/.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+
+#include "raster/render.h"
+#include "tests/case_generator.h"
+#include "viewer_tty/case_file.h"
+#include "viewer_tty/gl_reference.h"
+#include "viewer_tty/png_io.h"
+
+namespace pem::test {
+namespace {
+
+const std::vector<NamedCase>& Cases() {
+    static const std::vector<NamedCase> cases = ConformanceCases();
+    return cases;
+}
+
+class Conformance : public ::testing::TestWithParam<size_t> {};
+
+void WriteFailure(const std::string& name, const std::string& json, const raster::Image8& ours,
+                  const raster::Image8& gl) {
+    const std::filesystem::path dir = std::filesystem::path(PEM_TEST_OUTPUT_DIR) / "conformance";
+    std::filesystem::create_directories(dir);
+    std::ofstream(dir / (name + ".json")) << json;
+    cli::WritePng((dir / (name + "_pemref.png")).string(), ours);
+    cli::WritePng((dir / (name + "_llvmpipe.png")).string(), gl);
+    raster::Image8 diff = ours;
+    for (size_t i = 0; i < diff.rgba.size(); i += 4) {
+        const bool same = std::equal(&ours.rgba[i], &ours.rgba[i] + 4, &gl.rgba[i]);
+        diff.rgba[i] = diff.rgba[i + 1] = diff.rgba[i + 2] = same ? 0 : 255;
+        diff.rgba[i + 3] = 255;
+    }
+    cli::WritePng((dir / (name + "_diff.png")).string(), diff);
+}
+
+TEST_P(Conformance, BitIdenticalToLlvmpipe) {
+    // The reference must be llvmpipe, also on machines with a GPU.
+    setenv("LIBGL_ALWAYS_SOFTWARE", "1", 1);
+    const std::optional<std::string> why = cli::GlAvailable();
+    ASSERT_FALSE(why.has_value()) << "OpenGL (EGL) unavailable: " << *why;
+    ASSERT_NE(cli::GlRendererString().find("llvmpipe"), std::string::npos)
+        << "reference renderer is not llvmpipe: " << cli::GlRendererString();
+
+    const NamedCase& c = Cases()[GetParam()];
+    const std::string json = cli::CaseToJson(c.frame);
+    const raster::Frame frame = cli::ParseCaseJson(json, c.name);
+    const raster::PreparedFrame prepared(frame);
+    const raster::Image8 ours = raster::Render(prepared, {}).image8;
+    const raster::Image8 gl = cli::RenderWithGl(frame, 1, nullptr);
+    ASSERT_EQ(ours.rgba.size(), gl.rgba.size());
+    size_t differ = 0, first = 0;
+    int maxDelta = 0;
+    for (size_t i = 0; i < ours.rgba.size(); ++i)
+        if (ours.rgba[i] != gl.rgba[i]) {
+            if (differ++ == 0) first = i;
+            maxDelta = std::max(maxDelta, std::abs(ours.rgba[i] - gl.rgba[i]));
+        }
+    if (differ) WriteFailure(c.name, json, ours, gl);
+    EXPECT_EQ(differ, 0u) << c.name << ": " << differ << " bytes differ (max delta " << maxDelta
+                          << "), first at pixel " << first / 4 << " (x " << (first / 4) % frame.width
+                          << ", row " << (first / 4) / frame.width << ")";
+}
+
+INSTANTIATE_TEST_SUITE_P(Cases, Conformance, ::testing::Range<size_t>(0, Cases().size()),
+                         [](const ::testing::TestParamInfo<size_t>& p) {
+                             return Cases()[p.param].name;
+                         });
+
+}  // namespace
+}  // namespace pem::test
