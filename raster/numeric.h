@@ -68,6 +68,11 @@ inline uint8_t UnormFromFloatHalfUp(float x) {
     return static_cast<uint8_t>(std::floor(c * 255.0f + 0.5f));
 }
 
+// float -> unorm8 with the rounding rule selected (RNE: GL/llvmpipe; half up: D3D).
+inline uint8_t UnormFromFloat(float x, bool halfEven) {
+    return halfEven ? UnormFromFloatRne(x) : UnormFromFloatHalfUp(x);
+}
+
 // unorm8 -> float as llvmpipe converts texels and framebuffer values: c * fl(1/255).
 inline float FloatFromUnorm8(uint8_t c) { return static_cast<float>(c) * static_cast<float>(1.0 / 255.0); }
 

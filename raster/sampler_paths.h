@@ -5,7 +5,8 @@
 //    seamless edges and corners, float MIP lerp.
 //  - FilterFixed8: the 8-bit fixed-point "AoS" path (2D RGBA8 textures, non-seamless cubes,
 //    nearest-filtered cubes): 8-bit weights, lerps with intermediate rounding to 8 bits.
-// Both emit taps with the ideal linear weights of the texels they read.
+// Both emit taps with the ideal linear weights of the texels they read. The paths live in
+// sample_float_impl.h and sample_fixed8_impl.h; this header holds what they share.
 #pragma once
 
 #include <array>
@@ -21,16 +22,5 @@ struct LaneSample {
     std::array<float, kLanes> s{}, t{};
     std::array<LodResult, kLanes> lod{};
 };
-
-// True when llvmpipe samples this texture with its 8-bit AoS path.
-bool UsesAosPath(const Texture& t);
-
-void FilterFloat(const PreparedFrame& frame, const Texture& tex, const PreparedTexture& pt,
-                 bool exactTexels, const LaneSample& ls, std::array<RgbaF, kLanes>* colour,
-                 std::array<PixelTaps, kLanes>* taps);
-
-void FilterFixed8(const PreparedFrame& frame, const Texture& tex, const PreparedTexture& pt,
-                  const LaneSample& ls, std::array<RgbaF, kLanes>* colour,
-                  std::array<PixelTaps, kLanes>* taps);
 
 }  // namespace pem::raster

@@ -43,10 +43,6 @@ Edge MakeEdge(const Fixed& p, int i) {
 
 }  // namespace
 
-float EvalPlane(const Plane& p, float x, float y) {
-    return std::fma(p.dady, y, std::fma(p.dadx, x, p.a0));
-}
-
 bool SetupTriangle(const WindowVertex& in0, const WindowVertex& in1, const WindowVertex& in2,
                    int numAttribs, int width, int height, TriangleSetup* out) {
     // Snap to the subpixel grid; draw clockwise triangles as (v1, v0, v2).

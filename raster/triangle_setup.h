@@ -15,6 +15,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 
 namespace pem::raster {
@@ -58,6 +59,8 @@ inline bool Inside(const TriangleSetup& t, int x, int y) {
 }
 
 // Interpolated value of a plane at pixel (X, Y), llvmpipe's fused form.
-float EvalPlane(const Plane& p, float x, float y);
+inline float EvalPlane(const Plane& p, float x, float y) {
+    return std::fma(p.dady, y, std::fma(p.dadx, x, p.a0));
+}
 
 }  // namespace pem::raster

@@ -1,11 +1,14 @@
 // SPDX-License-Identifier: MIT
+// cube_lookup_impl.h — implementation of cube_lookup.h, compiled into each fragment-stage
+// variant (fragment_base.cpp, fragment_fma.cpp; see fragment.h).
+#pragma once
 #include "raster/cube_lookup.h"
 
 #include <cmath>
 
 #include "raster/numeric.h"
 
-namespace pem::raster {
+namespace pem::raster::isa {
 namespace {
 
 float FlipSign(float v, uint32_t signBit) { return BitsFloat(FloatBits(v) ^ signBit); }
@@ -33,7 +36,6 @@ void MinorCoords(Axis axis, uint32_t sign, const Vec3f& v, float* sc, float* tc)
     }
 }
 
-}  // namespace
 
 int CubeFace(const Vec3f& dir) {
     const Axis axis = MajorAxis(dir);
@@ -73,4 +75,5 @@ CubeCoord CubeLookup(const Vec3f& dir, const Vec3f& ddx, const Vec3f& ddy, bool 
     return out;
 }
 
-}  // namespace pem::raster
+}  // namespace
+}  // namespace pem::raster::isa

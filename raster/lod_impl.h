@@ -1,4 +1,6 @@
 // SPDX-License-Identifier: MIT
+// lod_impl.h — implementation of lod.h, compiled into each fragment-stage variant (fragment.h).
+#pragma once
 #include "raster/lod.h"
 
 #include <algorithm>
@@ -6,7 +8,8 @@
 
 #include "raster/numeric.h"
 
-namespace pem::raster {
+namespace pem::raster::isa {
+namespace {
 
 PipeLodState DerivePipeLodState(const SamplerState& s, int /*numLevels*/) {
     // What Mesa's GL state tracker passes down: the bias clamped to [-16, 16] and quantised to
@@ -76,7 +79,7 @@ LodResult SelectLod(float rhoSquared, const PipeLodState& st, MipFilter mip, int
                     bool exactLog2) {
     const bool shortcut = !exactLog2 && !st.biasNonZero && !st.applyMinLod && !st.applyMaxLod &&
                           !st.minMaxEqual && mip != MipFilter::Linear;
-    if (!shortcut) return LevelsFor(LambdaFromRhoSquared(rhoSquared, st, exactLog2), mip, numLevels);
+    if (!shortcut) return isa::LevelsFor(isa::LambdaFromRhoSquared(rhoSquared, st, exactLog2), mip, numLevels);
     LodResult r;
     r.magnify = !(rhoSquared > 1.0f);
     if (mip == MipFilter::Nearest) {
@@ -86,4 +89,5 @@ LodResult SelectLod(float rhoSquared, const PipeLodState& st, MipFilter mip, int
     return r;
 }
 
-}  // namespace pem::raster
+}  // namespace
+}  // namespace pem::raster::isa

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// sampler_fixed8.cpp — llvmpipe's 8-bit fixed-point ("AoS") filtering path.
+// sample_fixed8_impl.h — llvmpipe's 8-bit fixed-point ("AoS") filtering path.
 //
 //  - NEAREST: i = floor(s * N), clamped to [0, N-1] (or & (N-1) for repeat).
 //  - LINEAR: S = RNE(s * (N * 256)) - 128, i0 = S >> 8, 8-bit weight S & 255 (meaning w/256);
@@ -9,12 +9,13 @@
 //  - MIP: weight trunc(frac * 256), lerp8 between the two levels' 8-bit results.
 //  - The 8-bit result becomes float as c * fl(1/255).
 // Cubes reach this path with their face coordinates and clamp-to-edge per face (no seams).
+#pragma once
 #include <algorithm>
 
 #include "raster/numeric.h"
 #include "raster/sampler_paths.h"
 
-namespace pem::raster {
+namespace pem::raster::isa {
 namespace {
 
 struct Axis8 {
@@ -92,7 +93,6 @@ Rgba8 FilterLevel(const Level8& lv, Filter filter, Wrap ws, Wrap wt, float s, fl
     return out;
 }
 
-}  // namespace
 
 void FilterFixed8(const PreparedFrame& frame, const Texture& tex, const PreparedTexture& /*pt*/,
                   const LaneSample& ls, std::array<RgbaF, kLanes>* colour,
@@ -126,4 +126,5 @@ void FilterFixed8(const PreparedFrame& frame, const Texture& tex, const Prepared
     }
 }
 
-}  // namespace pem::raster
+}  // namespace
+}  // namespace pem::raster::isa

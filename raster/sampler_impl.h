@@ -1,17 +1,20 @@
 // SPDX-License-Identifier: MIT
-// sampler.cpp — texture lookups of eight lanes (sampler.h): derivatives, face selection, LOD,
+// sampler_impl.h — texture lookups of eight lanes (sampler.h): derivatives, face selection, LOD,
 // then llvmpipe's float ("SoA") or 8-bit ("AoS") filtering path, whichever it would take.
+#pragma once
 #include "raster/sampler.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "raster/cube_lookup.h"
-#include "raster/lod.h"
+#include "raster/cube_lookup_impl.h"
+#include "raster/lod_impl.h"
 #include "raster/numeric.h"
+#include "raster/sample_fixed8_impl.h"
+#include "raster/sample_float_impl.h"
 #include "raster/sampler_paths.h"
 
-namespace pem::raster {
+namespace pem::raster::isa {
 namespace {
 
 // Fine quad differences: ddx = right - left within the lane's row, ddy = bottom - top within
@@ -26,7 +29,6 @@ void FineDerivatives(const LaneCoords& c, int lane, Vec3f* ddx, Vec3f* ddy) {
     }
 }
 
-}  // namespace
 
 bool UsesAosPath(const Texture& t) {
     const SamplerState& s = t.sampler;
@@ -48,7 +50,7 @@ void SampleLanes(const PreparedFrame& frame, int textureIndex, const RenderOptio
     const PreparedTexture& pt = frame.texture(textureIndex);
     const Texture& tex = *pt.source;
     const SamplerState& s = tex.sampler;
-    const PipeLodState lodState = DerivePipeLodState(s, tex.NumLevels());
+    const PipeLodState lodState = isa::DerivePipeLodState(s, tex.NumLevels());
     const bool needLod = s.mipFilter != MipFilter::None || s.minFilter != s.magFilter;
     const bool exact = options.cubeLod == CubeLod::Exact;
 
@@ -62,7 +64,7 @@ void SampleLanes(const PreparedFrame& frame, int textureIndex, const RenderOptio
             Vec3f ddx{}, ddy{};
             const Vec3f dir{coords.c[l][0], coords.c[l][1], coords.c[l][2]};
             if (withDerivs) FineDerivatives(coords, l, &ddx, &ddy);
-            const CubeCoord cc = CubeLookup(dir, ddx, ddy, withDerivs);
+            const CubeCoord cc = isa::CubeLookup(dir, ddx, ddy, withDerivs);
             ls.face[l] = cc.face;
             ls.s[l] = cc.s;
             ls.t[l] = cc.t;
@@ -75,7 +77,7 @@ void SampleLanes(const PreparedFrame& frame, int textureIndex, const RenderOptio
                 rho = rx > ry ? rx : ry;  // maxps
                 if (!std::isfinite(rho)) rho = 0.0f;
             }
-            ls.lod[l] = SelectLod(rho, lodState, s.mipFilter, tex.NumLevels(), exact);
+            ls.lod[l] = isa::SelectLod(rho, lodState, s.mipFilter, tex.NumLevels(), exact);
         }
     } else {
         // 2D: coarse derivatives per quad from its top-left pixel, one LOD per quad.
@@ -90,7 +92,7 @@ void SampleLanes(const PreparedFrame& frame, int textureIndex, const RenderOptio
                 const float dtdx = (tr[1] - tl[1]) * h, dtdy = (bl[1] - tl[1]) * h;
                 const float rx = dsdx * dsdx + dtdx * dtdx, ry = dsdy * dsdy + dtdy * dtdy;
                 float rho = rx > ry ? rx : ry;
-                lod = SelectLod(rho, lodState, s.mipFilter, tex.NumLevels(), exact);
+                lod = isa::SelectLod(rho, lodState, s.mipFilter, tex.NumLevels(), exact);
             }
             for (int p = 0; p < 4; ++p) {
                 ls.s[q + p] = coords.c[q + p][0];
@@ -108,4 +110,5 @@ void SampleLanes(const PreparedFrame& frame, int textureIndex, const RenderOptio
         FilterFixed8(frame, tex, pt, ls, colour, taps);
 }
 
-}  // namespace pem::raster
+}  // namespace
+}  // namespace pem::raster::isa

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// sampler_float.cpp — llvmpipe's float ("SoA") filtering path, and the `linear` profile.
+// sample_float_impl.h — llvmpipe's float ("SoA") filtering path, and the `linear` profile.
 //
 // Per MIP slot (level0, then level1 when some lane blends two levels):
 //  - texel coordinates: u = wrap(s) * size - 0.5, i0 = floor(u), alpha = u - floor(u);
@@ -9,13 +9,14 @@
 //    except when any of the eight lanes touches a cube corner: then every lane uses
 //    w00*t00 + w01*t01 + w10*t10 + w11*t11 with the corner weight spread in thirds;
 //  - MIP: lerp(frac, c0, c1).
+#pragma once
 #include <algorithm>
 #include <cmath>
 
 #include "raster/numeric.h"
 #include "raster/sampler_paths.h"
 
-namespace pem::raster {
+namespace pem::raster::isa {
 namespace {
 
 float MaxNanToOther(float v, float other) { return std::isnan(v) ? other : std::max(v, other); }
@@ -28,15 +29,15 @@ float Mirror(float x) {
     return MaxNanToOther(std::fabs(f + f), 0.0f);
 }
 
-struct Axis {
+struct WrapAxis {
     int i0 = 0, i1 = 0;
     float w = 0;  // weight of i1
 };
 
 // Linear wrap of one 2D axis (lp_build_sample_wrap_linear, power-of-two sizes).
-Axis WrapLinear(float coord, int len, Wrap wrap) {
+WrapAxis WrapLinear(float coord, int len, Wrap wrap) {
     const float lenf = static_cast<float>(len);
-    Axis a;
+    WrapAxis a;
     float u;
     switch (wrap) {
         case Wrap::Repeat: {
@@ -122,13 +123,16 @@ int NextFace(int face, int edge) {
     return kFace[edge][face];
 }
 
-// The four texels (face, i, j) and bilinear fractions of one lane at one level.
+// The four texels and bilinear fractions of one lane at one level. A texel is its index inside
+// the level (face-major: (face * h + j) * w + i).
 struct Footprint {
-    std::array<int, 4> face{}, i{}, j{};  // order 00, 01, 10, 11 (x fastest)
-    float a = 0, b = 0;                   // weights of column 1 and row 1
-    int corner = -1;                      // index of the missing corner texel, or -1
-    bool nearest = false;                 // one texel (index 0)
+    std::array<int32_t, 4> texel;  // order 00, 01, 10, 11 (x fastest)
+    float a = 0, b = 0;            // weights of column 1 and row 1
+    int corner = -1;               // index of the missing corner texel, or -1
+    bool nearest = false;          // one texel (index 0)
 };
+
+int32_t TexelAt(int face, int i, int j, int w, int h) { return (face * h + j) * w + i; }
 
 Footprint SeamlessLinear(float s, float t, int face, int size) {
     Footprint f;
@@ -155,9 +159,7 @@ Footprint SeamlessLinear(float s, float t, int face, int size) {
             CrossEdge(face, yEdge[k], max, &i, &j);
             fc = NextFace(face, yEdge[k]);
         }
-        f.face[k] = fc;
-        f.i[k] = i;
-        f.j[k] = j;
+        f.texel[k] = TexelAt(fc, i, j, size, size);
         if (offX[k] && offY[k]) f.corner = k;
     }
     return f;
@@ -165,35 +167,31 @@ Footprint SeamlessLinear(float s, float t, int face, int size) {
 
 Footprint PlainLinear(float s, float t, int face, int w, int h, Wrap ws, Wrap wt) {
     Footprint f;
-    const Axis x = WrapLinear(s, w, ws), y = WrapLinear(t, h, wt);
+    const WrapAxis x = WrapLinear(s, w, ws), y = WrapLinear(t, h, wt);
     f.a = x.w;
     f.b = y.w;
     const int xs[4] = {x.i0, x.i1, x.i0, x.i1}, ys[4] = {y.i0, y.i0, y.i1, y.i1};
-    for (int k = 0; k < 4; ++k) { f.face[k] = face; f.i[k] = xs[k]; f.j[k] = ys[k]; }
+    for (int k = 0; k < 4; ++k) f.texel[k] = TexelAt(face, xs[k], ys[k], w, h);
     return f;
 }
 
 Footprint PlainNearest(float s, float t, int face, int w, int h, Wrap ws, Wrap wt) {
     Footprint f;
     f.nearest = true;
-    f.face[0] = face;
-    f.i[0] = WrapNearest(s, w, ws);
-    f.j[0] = WrapNearest(t, h, wt);
+    f.texel[0] = TexelAt(face, WrapNearest(s, w, ws), WrapNearest(t, h, wt), w, h);
     return f;
 }
 
 struct LevelView {
     const float* texels;  // RGBA floats of the level
-    int w, h;
     uint32_t base;        // global index of the level's first texel
 };
 
-RgbaF Fetch(const LevelView& lv, int face, int i, int j) {
-    const float* p = lv.texels + 4 * ((static_cast<size_t>(face) * lv.h + j) * lv.w + i);
-    return {p[0], p[1], p[2], p[3]};
+const float* Fetch(const LevelView& lv, int32_t texel) {
+    return lv.texels + 4 * static_cast<size_t>(texel);
 }
-uint32_t TexelOf(const LevelView& lv, int face, int i, int j) {
-    return lv.base + static_cast<uint32_t>((face * lv.h + j) * lv.w + i);
+uint32_t TexelOf(const LevelView& lv, int32_t texel) {
+    return lv.base + static_cast<uint32_t>(texel);
 }
 
 // Bilinear weights of a footprint, the corner weight spread over the other three.
@@ -210,16 +208,25 @@ std::array<float, 4> Weights(const Footprint& f) {
 RgbaF FilterFootprint(const LevelView& lv, const Footprint& f, bool weighted, float scale,
              PixelTaps* taps) {
     if (f.nearest) {
-        if (taps) taps->Add(TexelOf(lv, f.face[0], f.i[0], f.j[0]), scale);
-        return Fetch(lv, f.face[0], f.i[0], f.j[0]);
+        if (taps) taps->Add(TexelOf(lv, f.texel[0]), scale);
+        const float* p = Fetch(lv, f.texel[0]);
+        return {p[0], p[1], p[2], p[3]};
     }
-    std::array<RgbaF, 4> t;
-    for (int k = 0; k < 4; ++k) t[k] = Fetch(lv, f.face[k], f.i[k], f.j[k]);
+    const float* t[4] = {Fetch(lv, f.texel[0]), Fetch(lv, f.texel[1]), Fetch(lv, f.texel[2]),
+                         Fetch(lv, f.texel[3])};
+    RgbaF out;
+    if (!weighted && !taps) {
+        for (int c = 0; c < 4; ++c) {
+            const float r0 = LerpF(f.a, t[0][c], t[1][c]);
+            const float r1 = LerpF(f.a, t[2][c], t[3][c]);
+            out[c] = LerpF(f.b, r0, r1);
+        }
+        return out;
+    }
     const std::array<float, 4> w = Weights(f);
     if (taps)
         for (int k = 0; k < 4; ++k)
-            if (w[k] != 0.0f) taps->Add(TexelOf(lv, f.face[k], f.i[k], f.j[k]), w[k] * scale);
-    RgbaF out;
+            if (w[k] != 0.0f) taps->Add(TexelOf(lv, f.texel[k]), w[k] * scale);
     for (int c = 0; c < 4; ++c) {
         if (weighted) {
             float v = w[0] * t[0][c];
@@ -236,7 +243,6 @@ RgbaF FilterFootprint(const LevelView& lv, const Footprint& f, bool weighted, fl
     return out;
 }
 
-}  // namespace
 
 void FilterFloat(const PreparedFrame& frame, const Texture& tex, const PreparedTexture& pt,
                  bool exactTexels, const LaneSample& ls, std::array<RgbaF, kLanes>* colour,
@@ -258,7 +264,7 @@ void FilterFloat(const PreparedFrame& frame, const Texture& tex, const PreparedT
             const LodResult& lod = ls.lod[l];
             const int level = slot == 0 ? lod.level0 : lod.level1;
             const int w = tex.LevelWidth(level), h = tex.LevelHeight(level);
-            lv[l] = {levels[static_cast<size_t>(level)].data(), w, h,
+            lv[l] = {levels[static_cast<size_t>(level)].data(),
                      frame.indexer().LevelBase(ls.texture, level)};
             const Filter filter = lod.magnify ? s.magFilter : s.minFilter;
             const Wrap ws = cube ? Wrap::ClampToEdge : s.wrapS;
@@ -287,4 +293,5 @@ void FilterFloat(const PreparedFrame& frame, const Texture& tex, const PreparedT
     }
 }
 
-}  // namespace pem::raster
+}  // namespace
+}  // namespace pem::raster::isa

@@ -1,0 +1,138 @@
+// SPDX-License-Identifier: MIT
+// shade_impl.h — the fragment stage's loop (fragment.h): 4x2 lane groups of a triangle, per-lane
+// interpolation (1/w interpolated, one division, attributes times it), texture units, the
+// fragment colour texture(u0) * texture(u1) * colour, unorm8 conversion and 8-bit blending (or
+// the Linear profile's float blending, or the rows of the rendering matrix).
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "raster/blend.h"
+#include "raster/fragment.h"
+#include "raster/numeric.h"
+#include "raster/sampler_impl.h"
+
+namespace pem::raster::isa {
+namespace {
+
+int ColourOffset(const Pass& pass) { return 3 * pass.numUnits; }
+
+// Per-lane attribute values of a 4x2 lane group (sampler.h's lane order): the interpolated
+// 1/w, one true division, and each attribute times it.
+struct LaneAttribs {
+    std::array<std::array<float, kMaxAttribs>, kLanes> a;
+};
+
+constexpr int kLaneDx[kLanes] = {0, 1, 0, 1, 2, 3, 2, 3};
+constexpr int kLaneDy[kLanes] = {0, 0, 1, 1, 0, 0, 1, 1};
+
+LaneAttribs InterpolateLanes(const TriangleSetup& t, int gx, int gy) {
+    LaneAttribs q;
+    for (int l = 0; l < kLanes; ++l) {
+        const float x = static_cast<float>(gx + kLaneDx[l]);
+        const float y = static_cast<float>(gy + kLaneDy[l]);
+        const float oow = 1.0f / EvalPlane(t.oow, x, y);
+        for (int k = 0; k < t.numAttribs; ++k) q.a[l][k] = EvalPlane(t.attr[k], x, y) * oow;
+    }
+    return q;
+}
+
+uint8_t ToUnorm(float v, UnormRounding r) {
+    return UnormFromFloat(v, r == UnormRounding::HalfEven);
+}
+
+// Shades the covered lanes of one 4x2 group of one triangle and writes them.
+void ShadeGroup(const FragmentTarget& tg, const Pass& pass, const TriangleSetup& t, int gx, int gy,
+                unsigned mask) {
+    const Frame& frame = tg.frame->frame();
+    const LaneAttribs qa = InterpolateLanes(t, gx, gy);
+    const bool wantTaps = tg.rows != nullptr;
+
+    // Texture units.
+    std::array<std::array<RgbaF, kLanes>, kMaxUnits> tex{};
+    std::array<PixelTaps, kLanes> taps;
+    for (int u = 0; u < pass.numUnits; ++u) {
+        LaneCoords lc;
+        for (int l = 0; l < kLanes; ++l)
+            for (int k = 0; k < 3; ++k) lc.c[l][k] = qa.a[l][static_cast<size_t>(3 * u + k)];
+        isa::SampleLanes(*tg.frame, pass.texture[u], tg.options, lc, &tex[u],
+                    wantTaps && u == 0 ? &taps : nullptr);
+    }
+
+    const int co = ColourOffset(pass);
+    const bool linear = tg.options.profile == Profile::Linear;
+    for (int l = 0; l < kLanes; ++l) {
+        if (!(mask & (1u << l))) continue;
+        const int x = gx + kLaneDx[l], y = gy + kLaneDy[l];
+        const size_t pixel = static_cast<size_t>(frame.height - 1 - y) * frame.width + x;
+
+        // Fragment colour: texture(u0) * texture(u1) * colour, left to right.
+        RgbaF src, mod;
+        for (int c = 0; c < 4; ++c) {
+            const float col = qa.a[l][static_cast<size_t>(co + c)];
+            float m = col;  // what multiplies unit 0's sample
+            float v = col;
+            if (pass.numUnits == 1) v = tex[0][l][c] * col;
+            if (pass.numUnits == 2) {
+                v = (tex[0][l][c] * tex[1][l][c]) * col;
+                m = tex[1][l][c] * col;
+            }
+            src[c] = v;
+            mod[c] = m;
+        }
+
+        if (wantTaps) {
+            // Matrix rows: blend none replaces, add accumulates (checked by the caller).
+            for (int c = 0; c < 4; ++c) {
+                auto& row = (*tg.rows)[4 * pixel + static_cast<size_t>(c)];
+                double& off = tg.matrix->offset[4 * pixel + static_cast<size_t>(c)];
+                if (!pass.blend.enabled) { row.clear(); off = 0.0; }
+                if (pass.numUnits == 0) { off += static_cast<double>(src[c]); continue; }
+                for (int k = 0; k < taps[l].count; ++k)
+                    row.push_back({4 * taps[l].tap[k].texel + static_cast<uint32_t>(c),
+                                   static_cast<double>(taps[l].tap[k].weight) * static_cast<double>(mod[c])});
+            }
+            continue;
+        }
+        if (linear) {
+            float* d = &tg.imageF->rgba[4 * pixel];
+            const RgbaF out = BlendF(pass.blend, src, {d[0], d[1], d[2], d[3]});
+            for (int c = 0; c < 4; ++c) d[c] = out[c];
+        } else {
+            uint8_t* d = &tg.image8->rgba[4 * pixel];
+            const UnormRounding r = tg.options.rounding;
+            const Rgba8 s8{ToUnorm(src[0], r), ToUnorm(src[1], r), ToUnorm(src[2], r),
+                           ToUnorm(src[3], r)};
+            const Rgba8 out = Blend8(pass.blend, s8, {d[0], d[1], d[2], d[3]});
+            for (int c = 0; c < 4; ++c) d[c] = out[c];
+        }
+    }
+}
+
+// Draws the 4x2 lane groups of one triangle that lie in the bands owned by `worker`. A group
+// is shaded when at least one of its pixels is covered (llvmpipe skips empty 8-lane vectors).
+void DrawTriangle(const FragmentTarget& tg, const Pass& pass, const TriangleSetup& t, int worker,
+                  int workers) {
+    const int gy0 = t.y0 & ~1, gx0 = t.x0 & ~3;
+    for (int gy = gy0; gy <= t.y1; gy += 2) {
+        if ((gy / 2 / kBandQuadRows) % workers != worker) continue;
+        for (int gx = gx0; gx <= t.x1; gx += 4) {
+            unsigned mask = 0;
+            for (int l = 0; l < kLanes; ++l) {
+                const int x = gx + kLaneDx[l], y = gy + kLaneDy[l];
+                if (x >= t.x0 && x <= t.x1 && y >= t.y0 && y <= t.y1 && Inside(t, x, y))
+                    mask |= 1u << l;
+            }
+            if (mask) ShadeGroup(tg, pass, t, gx, gy, mask);
+        }
+    }
+}
+
+void DrawBands(const FragmentTarget& tg, const Pass& pass,
+               const std::vector<TriangleSetup>& triangles, int worker, int workers) {
+    for (const TriangleSetup& t : triangles) DrawTriangle(tg, pass, t, worker, workers);
+}
+
+}  // namespace
+}  // namespace pem::raster::isa

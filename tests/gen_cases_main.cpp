@@ -1,0 +1,33 @@
+// SPDX-License-Identifier: MIT
+// gen_cases — writes the conformance corpus (case_generator.h) as case files, one per case, and
+// the benchmark frame as bench.json:  gen_cases OUTDIR [--bench-only]
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+
+#include "tests/case_generator.h"
+#include "viewer_tty/case_file.h"
+
+int main(int argc, char** argv) {
+    if (argc < 2) {
+        std::fprintf(stderr, "usage: gen_cases OUTDIR [--bench-only]\n");
+        return 2;
+    }
+    const std::filesystem::path dir = argv[1];
+    const bool benchOnly = argc > 2 && std::strcmp(argv[2], "--bench-only") == 0;
+    std::filesystem::create_directories(dir);
+    auto write = [&](const std::string& name, const pem::raster::Frame& f) {
+        std::ofstream(dir / (name + ".json")) << pem::cli::CaseToJson(f);
+    };
+    // 640x480, sky quad + 200x100 UV sphere (40k triangles), 256^2 cube, trilinear, seamless.
+    write("bench", pem::test::BenchmarkFrame(640, 480, 100, 200, 256));
+    if (benchOnly) return 0;
+    int n = 0;
+    for (const auto& c : pem::test::ConformanceCases()) {
+        write(c.name, c.frame);
+        ++n;
+    }
+    std::printf("wrote %d cases and bench.json to %s\n", n, dir.c_str());
+    return 0;
+}
