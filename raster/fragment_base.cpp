@@ -48,8 +48,8 @@ LodResult SelectLod(float rhoSquared, const PipeLodState& st, MipFilter mip, int
 }
 void SampleLanes(const PreparedFrame& frame, int textureIndex, const RenderOptions& options,
                  const LaneCoords& coords, std::array<RgbaF, kLanes>* colour,
-                 std::array<PixelTaps, kLanes>* taps) {
-    isa::SampleLanes(frame, textureIndex, options, coords, colour, taps);
+                 std::array<PixelTaps, kLanes>* taps, unsigned live) {
+    isa::SampleLanes(frame, textureIndex, options, coords, colour, taps, live);
 }
 
 }  // namespace pem::raster

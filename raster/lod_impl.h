@@ -34,7 +34,7 @@ PipeLodState DerivePipeLodState(const SamplerState& s, int /*numLevels*/) {
     return st;
 }
 
-float LambdaFromRhoSquared(float rhoSquared, const PipeLodState& st, bool exactLog2) {
+[[gnu::always_inline]] inline float LambdaFromRhoSquared(float rhoSquared, const PipeLodState& st, bool exactLog2) {
     if (st.minMaxEqual) return st.minLod;
     float lambda;
     if (exactLog2)
@@ -47,7 +47,7 @@ float LambdaFromRhoSquared(float rhoSquared, const PipeLodState& st, bool exactL
     return lambda;
 }
 
-LodResult LevelsFor(float lambda, MipFilter mip, int numLevels) {
+[[gnu::always_inline]] inline LodResult LevelsFor(float lambda, MipFilter mip, int numLevels) {
     LodResult r;
     r.magnify = !(lambda > 0.0f);
     const int last = numLevels - 1;
@@ -75,7 +75,7 @@ LodResult LevelsFor(float lambda, MipFilter mip, int numLevels) {
     return r;
 }
 
-LodResult SelectLod(float rhoSquared, const PipeLodState& st, MipFilter mip, int numLevels,
+[[gnu::always_inline]] inline LodResult SelectLod(float rhoSquared, const PipeLodState& st, MipFilter mip, int numLevels,
                     bool exactLog2) {
     const bool shortcut = !exactLog2 && !st.biasNonZero && !st.applyMinLod && !st.applyMaxLod &&
                           !st.minMaxEqual && mip != MipFilter::Linear;

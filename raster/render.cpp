@@ -22,7 +22,7 @@ namespace {
 int ColourOffset(const Pass& pass) { return 3 * pass.numUnits; }
 
 // Vertex fetch, clipping, viewport transform and triangle setup of one pass.
-std::vector<TriangleSetup> SetupPass(const Frame& frame, const Pass& pass) {
+std::vector<TriangleSetup> SetupPass(const Frame& frame, const Pass& pass, int first, int last) {
     const int numAttribs = ColourOffset(pass) + 4;
     auto fetch = [&](uint32_t index) {
         const Vertex& v = pass.vertices[index];
@@ -34,7 +34,7 @@ std::vector<TriangleSetup> SetupPass(const Frame& frame, const Pass& pass) {
     };
     std::vector<TriangleSetup> setups;
     std::vector<WindowTriangle> clipped;
-    for (int t = 0; t < pass.NumTriangles(); ++t) {
+    for (int t = first; t < last; ++t) {
         uint32_t idx[3];
         for (int k = 0; k < 3; ++k)
             idx[k] = pass.indices.empty() ? static_cast<uint32_t>(3 * t + k)
@@ -51,37 +51,43 @@ std::vector<TriangleSetup> SetupPass(const Frame& frame, const Pass& pass) {
     return setups;
 }
 
+// Runs fn(0) .. fn(workers - 1), each on its own thread (fn(0) on the caller's), with
+// denormals flushed when `ftz` (llvmpipe's draw and rasterizer threads both flush).
+template <typename Fn>
+void RunWorkers(int workers, bool ftz, const Fn& fn) {
+    auto run = [&](int w) {
+        if (ftz) {
+            ScopedFlushToZero guard;
+            fn(w);
+        } else {
+            fn(w);
+        }
+    };
+    std::vector<std::thread> pool;
+    for (int w = 1; w < workers; ++w) pool.emplace_back(run, w);
+    run(0);
+    for (std::thread& th : pool) th.join();
+}
+
 void DrawFrame(const FragmentTarget& tg) {
-    // llvmpipe runs both the draw/setup stage and its rasterizer threads with denormals flushed
-    // (MXCSR DAZ|FTZ); the Linear profile uses plain IEEE arithmetic.
-    const bool ftz = tg.options.profile == Profile::Llvmpipe;
+    const bool ftz = tg.options.profile == Profile::Llvmpipe;  // Linear: plain IEEE arithmetic
     const Frame& frame = tg.frame->frame();
     const DrawBandsFn drawBands = SelectDrawBands();
     const int workers = std::max(1, tg.options.threads);
     for (const Pass& pass : frame.passes) {
-        std::vector<TriangleSetup> setups;
-        if (ftz) {
-            ScopedFlushToZero guard;
-            setups = SetupPass(frame, pass);
-        } else {
-            setups = SetupPass(frame, pass);
-        }
-        auto work = [&](int w) {
-            if (ftz) {
-                ScopedFlushToZero guard;
-                drawBands(tg, pass, setups, w, workers);
-            } else {
-                drawBands(tg, pass, setups, w, workers);
-            }
-        };
-        if (workers == 1) {
-            work(0);
-        } else {
-            std::vector<std::thread> pool;
-            for (int w = 1; w < workers; ++w) pool.emplace_back(work, w);
-            work(0);
-            for (std::thread& th : pool) th.join();
-        }
+        // Setup in contiguous chunks of triangles, joined in primitive order.
+        const int n = pass.NumTriangles();
+        std::vector<std::vector<TriangleSetup>> chunks(static_cast<size_t>(workers));
+        RunWorkers(workers, ftz, [&](int w) {
+            chunks[static_cast<size_t>(w)] =
+                SetupPass(frame, pass, static_cast<int>(int64_t{n} * w / workers),
+                          static_cast<int>(int64_t{n} * (w + 1) / workers));
+        });
+        std::vector<TriangleSetup> setups = std::move(chunks[0]);
+        for (size_t w = 1; w < chunks.size(); ++w)
+            setups.insert(setups.end(), chunks[w].begin(), chunks[w].end());
+        // Fragments by row bands.
+        RunWorkers(workers, ftz, [&](int w) { drawBands(tg, pass, setups, w, workers); });
     }
 }
 
@@ -98,6 +104,7 @@ PreparedFrame::PreparedFrame(const Frame& frame) : frame_(&frame), indexer_(fram
     for (const Texture& t : frame.textures) {
         PreparedTexture p;
         p.source = &t;
+        p.lod = DerivePipeLodState(t.sampler, t.NumLevels());
         for (const auto& level : t.levels) {
             p.levelsF.push_back(ToFloat(level, false));
             p.levelsExact.push_back(ToFloat(level, true));

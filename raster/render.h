@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "raster/frame.h"
+#include "raster/lod.h"
 #include "raster/texel_index.h"
 
 namespace pem::raster {
@@ -38,6 +39,7 @@ struct RenderOptions {
 // Textures converted once for sampling (float copies for the float paths).
 struct PreparedTexture {
     const Texture* source = nullptr;
+    PipeLodState lod;  // the sampler's LOD controls as llvmpipe receives them
     std::vector<std::vector<float>> levelsF;  // c * fl(1/255) per byte (llvmpipe's conversion)
     std::vector<std::vector<float>> levelsExact;  // c / 255 in float (linear profile)
 };

@@ -106,6 +106,7 @@ void FilterFixed8(const PreparedFrame& frame, const Texture& tex, const Prepared
                       tex.LevelHeight(l), frame.indexer().LevelBase(ls.texture, l)};
     };
     for (int l = 0; l < kLanes; ++l) {
+        if (!(ls.live & (1u << l))) continue;
         const LodResult& lod = ls.lod[l];
         const bool mag = lod.magnify && s.minFilter != s.magFilter;
         const Filter filter = mag ? s.magFilter : s.minFilter;

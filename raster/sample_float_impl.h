@@ -279,6 +279,9 @@ void FilterFloat(const PreparedFrame& frame, const Texture& tex, const PreparedT
         }
         for (int l = 0; l < kLanes; ++l) {
             const float frac = ls.lod[l].frac;
+            // Lanes nobody reads, and second-level lookups with weight 0 (fma(0, d, c0) == c0),
+            // need no texels.
+            if (!(ls.live & (1u << l)) || (slot == 1 && frac == 0.0f)) continue;
             const float scale = slots == 1 ? 1.0f : (slot == 0 ? 1.0f - frac : frac);
             PixelTaps* tp = taps ? &(*taps)[l] : nullptr;
             if (tp && scale == 0.0f) tp = nullptr;

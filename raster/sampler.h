@@ -47,9 +47,10 @@ struct LaneCoords {
     std::array<std::array<float, 3>, kLanes> c;  // per lane: s, t, r (2D uses s, t)
 };
 
-// Samples texture `textureIndex` of the frame for the eight lanes. `taps` may be null.
+// Samples texture `textureIndex` of the frame for the eight lanes. `taps` may be null. Only the
+// lanes in `live` get a colour and taps (the others still take part in vector-wide choices).
 void SampleLanes(const PreparedFrame& frame, int textureIndex, const RenderOptions& options,
                  const LaneCoords& coords, std::array<RgbaF, kLanes>* colour,
-                 std::array<PixelTaps, kLanes>* taps);
+                 std::array<PixelTaps, kLanes>* taps, unsigned live = 0xFF);
 
 }  // namespace pem::raster

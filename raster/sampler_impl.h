@@ -11,25 +11,14 @@
 #include "raster/lod_impl.h"
 #include "raster/numeric.h"
 #include "raster/sample_fixed8_impl.h"
+#include "raster/sample_fast_impl.h"
 #include "raster/sample_float_impl.h"
 #include "raster/sampler_paths.h"
 
 namespace pem::raster::isa {
 namespace {
 
-// Fine quad differences: ddx = right - left within the lane's row, ddy = bottom - top within
-// its column (bottom = larger raster y).
-void FineDerivatives(const LaneCoords& c, int lane, Vec3f* ddx, Vec3f* ddy) {
-    const int q = lane & ~3, p = lane & 3;
-    const int left = q + (p & 2), right = left + 1;
-    const int top = q + (p & 1), bottom = top + 2;
-    for (int k = 0; k < 3; ++k) {
-        (*ddx)[k] = c.c[right][k] - c.c[left][k];
-        (*ddy)[k] = c.c[bottom][k] - c.c[top][k];
-    }
-}
-
-
+// True when llvmpipe samples this texture with its 8-bit AoS path.
 bool UsesAosPath(const Texture& t) {
     const SamplerState& s = t.sampler;
     const bool cube = t.kind == TextureKind::Cube;
@@ -44,40 +33,93 @@ bool UsesAosPath(const Texture& t) {
     return cube || (simple(s.wrapS) && simple(s.wrapT));
 }
 
+// Face selection, projection and squared scale factor of all eight lanes, written as
+// branch-free loops over lanes (structure of arrays) so the compiler can vectorise them; the
+// per-lane arithmetic is exactly cube_lookup_impl.h's CubeLookup followed by llvmpipe's rho^2.
+void CubeLanes(const LaneCoords& c, bool withDerivs, float n, LaneSample* ls, float* rhoOut) {
+    alignas(32) float d[3][kLanes], dx[3][kLanes], dy[3][kLanes];
+    for (int k = 0; k < 3; ++k)
+        for (int l = 0; l < kLanes; ++l) d[k][l] = c.c[l][k];
+    // Fine quad differences: ddx = right - left in the lane's row, ddy = bottom - top.
+    for (int k = 0; k < 3; ++k)
+        for (int l = 0; l < kLanes; ++l) {
+            const int q = l & ~3, p = l & 3;
+            const int left = q + (p & 2), top = q + (p & 1);
+            dx[k][l] = d[k][left + 1] - d[k][left];
+            dy[k][l] = d[k][top + 2] - d[k][top];
+        }
+    for (int l = 0; l < kLanes; ++l) {
+        const float x = d[0][l], y = d[1][l], z = d[2][l];
+        const float as = std::fabs(x), at = std::fabs(y), ar = std::fabs(z);
+        const bool xGt = as > at;
+        const bool zGe = ar >= (as > at ? as : at);
+        const int axis = zGe ? 2 : (xGt ? 0 : 1);
+        const float ma = zGe ? z : (xGt ? x : y);
+        const uint32_t sign = FloatBits(ma) & 0x80000000u;
+        ls->face[l] = 2 * axis + static_cast<int>(sign >> 31);
+        // (sc, tc): X: (-z ^ sign, -y); Y: (x, z ^ sign); Z: (x ^ sign, -y).
+        auto minor = [&](const float (*v)[kLanes], float* sc, float* tc) {
+            const float vx = v[0][l], vy = v[1][l], vz = v[2][l];
+            *sc = axis == 0 ? BitsFloat(FloatBits(vz) ^ 0x80000000u ^ sign)
+                            : (axis == 1 ? vx : BitsFloat(FloatBits(vx) ^ sign));
+            *tc = axis == 1 ? BitsFloat(FloatBits(vz) ^ sign) : BitsFloat(FloatBits(vy) ^ 0x80000000u);
+        };
+        float sc, tc;
+        minor(d, &sc, &tc);
+        float imaHalfPos, rho = 0.0f;
+        if (withDerivs) {
+            const float ima = 1.0f / ma;
+            const float imaHalf = 0.5f * ima;
+            imaHalfPos = std::fabs(imaHalf);
+            float scdx, tcdx, scdy, tcdy;
+            minor(dx, &scdx, &tcdx);
+            minor(dy, &scdy, &tcdy);
+            const float madx = axis == 0 ? dx[0][l] : (axis == 1 ? dx[1][l] : dx[2][l]);
+            const float mady = axis == 0 ? dy[0][l] : (axis == 1 ? dy[1][l] : dy[2][l]);
+            const float qx = madx * ima, qy = mady * ima;
+            const float xs = n * ((scdx - qx * sc) * imaHalf), xt = n * ((tcdx - qx * tc) * imaHalf);
+            const float ys = n * ((scdy - qy * sc) * imaHalf), yt = n * ((tcdy - qy * tc) * imaHalf);
+            const float rx = xs * xs + xt * xt, ry = ys * ys + yt * yt;
+            rho = rx > ry ? rx : ry;  // maxps
+            rho = std::isfinite(rho) ? rho : 0.0f;
+        } else {
+            const float am = std::fabs(ma);
+            imaHalfPos = am > 0.0f ? 0.5f / am : 0.0f;
+        }
+        ls->s[l] = sc * imaHalfPos + 0.5f;
+        ls->t[l] = tc * imaHalfPos + 0.5f;
+        rhoOut[l] = rho;
+    }
+}
+
 void SampleLanes(const PreparedFrame& frame, int textureIndex, const RenderOptions& options,
                  const LaneCoords& coords, std::array<RgbaF, kLanes>* colour,
-                 std::array<PixelTaps, kLanes>* taps) {
+                 std::array<PixelTaps, kLanes>* taps, unsigned live) {
     const PreparedTexture& pt = frame.texture(textureIndex);
     const Texture& tex = *pt.source;
     const SamplerState& s = tex.sampler;
-    const PipeLodState lodState = isa::DerivePipeLodState(s, tex.NumLevels());
+    const PipeLodState& lodState = pt.lod;
+    if (!taps && FastSeamlessApplies(tex, lodState, options)) {
+        SampleFastSeamless(frame, textureIndex, coords, live, colour);
+        return;
+    }
     const bool needLod = s.mipFilter != MipFilter::None || s.minFilter != s.magFilter;
     const bool exact = options.cubeLod == CubeLod::Exact;
 
     // Coordinates on the texture and LOD per lane.
     LaneSample ls;
     ls.texture = textureIndex;
+    ls.live = live;
     if (tex.kind == TextureKind::Cube) {
         const bool withDerivs = needLod && !lodState.minMaxEqual;
-        const float n = static_cast<float>(tex.width);
-        for (int l = 0; l < kLanes; ++l) {
-            Vec3f ddx{}, ddy{};
-            const Vec3f dir{coords.c[l][0], coords.c[l][1], coords.c[l][2]};
-            if (withDerivs) FineDerivatives(coords, l, &ddx, &ddy);
-            const CubeCoord cc = isa::CubeLookup(dir, ddx, ddy, withDerivs);
-            ls.face[l] = cc.face;
-            ls.s[l] = cc.s;
-            ls.t[l] = cc.t;
-            if (!needLod) continue;
-            float rho = 0.0f;
-            if (withDerivs) {
-                const float xs = n * cc.dsdx, xt = n * cc.dtdx;
-                const float ys = n * cc.dsdy, yt = n * cc.dtdy;
-                const float rx = xs * xs + xt * xt, ry = ys * ys + yt * yt;
-                rho = rx > ry ? rx : ry;  // maxps
-                if (!std::isfinite(rho)) rho = 0.0f;
-            }
-            ls.lod[l] = isa::SelectLod(rho, lodState, s.mipFilter, tex.NumLevels(), exact);
+        alignas(32) float rho[kLanes];
+        CubeLanes(coords, withDerivs, static_cast<float>(tex.width), &ls, rho);
+        if (needLod) {
+            for (int l = 0; l < kLanes; ++l)
+                ls.lod[l] = isa::SelectLod(rho[l], lodState, s.mipFilter, tex.NumLevels(), exact);
+            // Without a MIP filter (min != mag) the LOD is per quad: its top-left pixel's.
+            if (s.mipFilter == MipFilter::None)
+                for (int l = 0; l < kLanes; ++l) ls.lod[l] = ls.lod[l & ~3];
         }
     } else {
         // 2D: coarse derivatives per quad from its top-left pixel, one LOD per quad.

@@ -21,6 +21,7 @@ struct LaneSample {
     std::array<int, kLanes> face{};
     std::array<float, kLanes> s{}, t{};
     std::array<LodResult, kLanes> lod{};
+    unsigned live = 0xFF;  // lanes whose colour is used (the others only steer vector choices)
 };
 
 }  // namespace pem::raster

@@ -18,24 +18,25 @@ namespace {
 
 int ColourOffset(const Pass& pass) { return 3 * pass.numUnits; }
 
-// Per-lane attribute values of a 4x2 lane group (sampler.h's lane order): the interpolated
-// 1/w, one true division, and each attribute times it.
+// Per-lane attribute values of a 4x2 lane group (sampler.h's lane order), attribute-major so
+// the loops over lanes vectorise: the interpolated 1/w, one true division, each attribute
+// times it.
 struct LaneAttribs {
-    std::array<std::array<float, kMaxAttribs>, kLanes> a;
+    alignas(32) float a[kMaxAttribs][kLanes];
 };
 
 constexpr int kLaneDx[kLanes] = {0, 1, 0, 1, 2, 3, 2, 3};
 constexpr int kLaneDy[kLanes] = {0, 0, 1, 1, 0, 0, 1, 1};
 
-LaneAttribs InterpolateLanes(const TriangleSetup& t, int gx, int gy) {
-    LaneAttribs q;
+void InterpolateLanes(const TriangleSetup& t, int gx, int gy, LaneAttribs* q) {
+    alignas(32) float x[kLanes], y[kLanes], oow[kLanes];
     for (int l = 0; l < kLanes; ++l) {
-        const float x = static_cast<float>(gx + kLaneDx[l]);
-        const float y = static_cast<float>(gy + kLaneDy[l]);
-        const float oow = 1.0f / EvalPlane(t.oow, x, y);
-        for (int k = 0; k < t.numAttribs; ++k) q.a[l][k] = EvalPlane(t.attr[k], x, y) * oow;
+        x[l] = static_cast<float>(gx + kLaneDx[l]);
+        y[l] = static_cast<float>(gy + kLaneDy[l]);
+        oow[l] = 1.0f / EvalPlane(t.oow, x[l], y[l]);
     }
-    return q;
+    for (int k = 0; k < t.numAttribs; ++k)
+        for (int l = 0; l < kLanes; ++l) q->a[k][l] = EvalPlane(t.attr[k], x[l], y[l]) * oow[l];
 }
 
 uint8_t ToUnorm(float v, UnormRounding r) {
@@ -46,7 +47,8 @@ uint8_t ToUnorm(float v, UnormRounding r) {
 void ShadeGroup(const FragmentTarget& tg, const Pass& pass, const TriangleSetup& t, int gx, int gy,
                 unsigned mask) {
     const Frame& frame = tg.frame->frame();
-    const LaneAttribs qa = InterpolateLanes(t, gx, gy);
+    LaneAttribs qa;
+    InterpolateLanes(t, gx, gy, &qa);
     const bool wantTaps = tg.rows != nullptr;
 
     // Texture units.
@@ -55,9 +57,9 @@ void ShadeGroup(const FragmentTarget& tg, const Pass& pass, const TriangleSetup&
     for (int u = 0; u < pass.numUnits; ++u) {
         LaneCoords lc;
         for (int l = 0; l < kLanes; ++l)
-            for (int k = 0; k < 3; ++k) lc.c[l][k] = qa.a[l][static_cast<size_t>(3 * u + k)];
+            for (int k = 0; k < 3; ++k) lc.c[l][k] = qa.a[3 * u + k][l];
         isa::SampleLanes(*tg.frame, pass.texture[u], tg.options, lc, &tex[u],
-                    wantTaps && u == 0 ? &taps : nullptr);
+                         wantTaps && u == 0 ? &taps : nullptr, mask);
     }
 
     const int co = ColourOffset(pass);
@@ -70,7 +72,7 @@ void ShadeGroup(const FragmentTarget& tg, const Pass& pass, const TriangleSetup&
         // Fragment colour: texture(u0) * texture(u1) * colour, left to right.
         RgbaF src, mod;
         for (int c = 0; c < 4; ++c) {
-            const float col = qa.a[l][static_cast<size_t>(co + c)];
+            const float col = qa.a[co + c][l];
             float m = col;  // what multiplies unit 0's sample
             float v = col;
             if (pass.numUnits == 1) v = tex[0][l][c] * col;
@@ -104,7 +106,7 @@ void ShadeGroup(const FragmentTarget& tg, const Pass& pass, const TriangleSetup&
             const UnormRounding r = tg.options.rounding;
             const Rgba8 s8{ToUnorm(src[0], r), ToUnorm(src[1], r), ToUnorm(src[2], r),
                            ToUnorm(src[3], r)};
-            const Rgba8 out = Blend8(pass.blend, s8, {d[0], d[1], d[2], d[3]});
+            const Rgba8 out = pass.blend.enabled ? Blend8(pass.blend, s8, {d[0], d[1], d[2], d[3]}) : s8;
             for (int c = 0; c < 4; ++c) d[c] = out[c];
         }
     }

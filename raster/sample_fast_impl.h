@@ -1,0 +1,182 @@
+// SPDX-License-Identifier: MIT
+// sample_fast_impl.h — the hot case of the llvmpipe profile, written lane-parallel: a seamless
+// cube, GL_LINEAR_MIPMAP_LINEAR with mag LINEAR, no taps. Every loop runs over
+// the eight lanes with selects instead of branches so the compiler can vectorise it; the
+// arithmetic per lane is exactly that of cube_lookup_impl.h, lod_impl.h and
+// sample_float_impl.h (the conformance suite checks both against llvmpipe). Lanes whose
+// footprint crosses a face edge are finished by the general SeamlessLinear.
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <cstdint>
+
+#include "raster/numeric.h"
+#include "raster/sample_float_impl.h"
+#include "raster/sampler.h"
+
+namespace pem::raster::isa {
+namespace {
+
+// True when SampleFastSeamless handles this sampler (and the caller wants no taps).
+bool FastSeamlessApplies(const Texture& t, const PipeLodState& st, const RenderOptions& o) {
+    const SamplerState& s = t.sampler;
+    return o.profile == Profile::Llvmpipe && o.cubeLod == CubeLod::Llvmpipe &&
+           t.kind == TextureKind::Cube && s.seamless && s.minFilter == Filter::Linear &&
+           s.magFilter == Filter::Linear && s.mipFilter == MipFilter::Linear && !st.minMaxEqual;
+}
+
+inline float SelectF(bool c, float a, float b) { return c ? a : b; }
+
+void SampleFastSeamless(const PreparedFrame& frame, int textureIndex, const LaneCoords& coords,
+                        unsigned live, std::array<RgbaF, kLanes>* colour) {
+    const PreparedTexture& pt = frame.texture(textureIndex);
+    const Texture& tex = *pt.source;
+    const PipeLodState& st = pt.lod;
+    const int last = tex.NumLevels() - 1;
+    const float n = static_cast<float>(tex.width);
+
+    // Directions and fine quad differences.
+    alignas(32) float d[3][kLanes], dx[3][kLanes], dy[3][kLanes];
+    for (int k = 0; k < 3; ++k)
+        for (int l = 0; l < kLanes; ++l) d[k][l] = coords.c[l][k];
+    for (int k = 0; k < 3; ++k)
+        for (int l = 0; l < kLanes; ++l) {
+            const int q = l & ~3, p = l & 3, left = q + (p & 2), top = q + (p & 1);
+            dx[k][l] = d[k][left + 1] - d[k][left];
+            dy[k][l] = d[k][top + 2] - d[k][top];
+        }
+
+    // Face, projection, rho^2 and LOD per lane.
+    alignas(32) int32_t face[kLanes], level0[kLanes], level1[kLanes];
+    alignas(32) float s[kLanes], t[kLanes], frac[kLanes];
+    for (int l = 0; l < kLanes; ++l) {
+        const float x = d[0][l], y = d[1][l], z = d[2][l];
+        const float as = std::fabs(x), at = std::fabs(y), ar = std::fabs(z);
+        const bool isX = !(ar >= (as > at ? as : at)) && as > at;
+        const bool isZ = ar >= (as > at ? as : at);
+        const bool isY = !isX && !isZ;
+        const float ma = isZ ? z : (isX ? x : y);
+        const uint32_t sign = FloatBits(ma) & 0x80000000u;
+        face[l] = (isZ ? 4 : (isX ? 0 : 2)) + static_cast<int32_t>(sign >> 31);
+        // (sc, tc): X: (-z ^ sign, -y); Y: (x, z ^ sign); Z: (x ^ sign, -y).
+        const uint32_t sX = FloatBits(z) ^ 0x80000000u ^ sign, sZ = FloatBits(x) ^ sign;
+        const float sc = isX ? BitsFloat(sX) : (isY ? x : BitsFloat(sZ));
+        const float tc = isY ? BitsFloat(FloatBits(z) ^ sign) : BitsFloat(FloatBits(y) ^ 0x80000000u);
+        const float ddxX = dx[0][l], ddxY = dx[1][l], ddxZ = dx[2][l];
+        const float ddyX = dy[0][l], ddyY = dy[1][l], ddyZ = dy[2][l];
+        const float scdx = isX ? BitsFloat(FloatBits(ddxZ) ^ 0x80000000u ^ sign)
+                               : (isY ? ddxX : BitsFloat(FloatBits(ddxX) ^ sign));
+        const float tcdx = isY ? BitsFloat(FloatBits(ddxZ) ^ sign)
+                               : BitsFloat(FloatBits(ddxY) ^ 0x80000000u);
+        const float scdy = isX ? BitsFloat(FloatBits(ddyZ) ^ 0x80000000u ^ sign)
+                               : (isY ? ddyX : BitsFloat(FloatBits(ddyX) ^ sign));
+        const float tcdy = isY ? BitsFloat(FloatBits(ddyZ) ^ sign)
+                               : BitsFloat(FloatBits(ddyY) ^ 0x80000000u);
+        const float madx = isZ ? ddxZ : (isX ? ddxX : ddxY);
+        const float mady = isZ ? ddyZ : (isX ? ddyX : ddyY);
+        const float ima = 1.0f / ma;
+        const float imaHalf = 0.5f * ima;
+        const float imaHalfPos = std::fabs(imaHalf);
+        const float qx = madx * ima, qy = mady * ima;
+        const float xs = n * ((scdx - qx * sc) * imaHalf), xt = n * ((tcdx - qx * tc) * imaHalf);
+        const float ys = n * ((scdy - qy * sc) * imaHalf), yt = n * ((tcdy - qy * tc) * imaHalf);
+        const float rx = xs * xs + xt * xt, ry = ys * ys + yt * yt;
+        float rho = rx > ry ? rx : ry;
+        const uint32_t rb = FloatBits(rho);
+        rho = ((rb & 0x7f800000u) == 0x7f800000u) ? 0.0f : rho;  // Inf/NaN -> 0
+        s[l] = sc * imaHalfPos + 0.5f;
+        t[l] = tc * imaHalfPos + 0.5f;
+        // lambda = 0.5 * FastLog2(rho^2) (+ bias, clamps), then floor / fraction / levels.
+        const uint32_t bits = FloatBits(rho);
+        const float e = static_cast<float>(static_cast<int32_t>((bits >> 23) & 255u) - 128);
+        float lambda = (e + BitsFloat((bits & 0x007fffffu) | 0x3f800000u)) * 0.5f;
+        if (st.biasNonZero) lambda = lambda + st.lodBias;
+        if (st.applyMaxLod) lambda = lambda < st.maxLod ? lambda : st.maxLod;
+        if (st.applyMinLod) lambda = lambda > st.minLod ? lambda : st.minLod;
+        const float fl = std::floor(lambda);
+        float f = lambda - fl;
+        int32_t l0 = std::fabs(fl) < 2147483648.0f ? static_cast<int32_t>(fl) : INT32_MIN;
+        int32_t l1 = l0 + 1;
+        const bool below = l0 < 0;
+        l0 = below ? 0 : l0;
+        l1 = below ? 0 : l1;
+        f = below ? 0.0f : f;
+        const bool above = l0 >= last;
+        l0 = above ? last : l0;
+        l1 = above ? last : l1;
+        f = above ? 0.0f : f;
+        level0[l] = l0;
+        level1[l] = l1;
+        frac[l] = f;
+    }
+
+    bool anyLerp = false;
+    for (int l = 0; l < kLanes; ++l) anyLerp |= frac[l] > 0.0f;
+    const int slots = anyLerp ? 2 : 1;
+    for (int slot = 0; slot < slots; ++slot) {
+        // Footprints: texel column/row, fractions and edge flags per lane.
+        alignas(32) int32_t x0[kLanes], y0[kLanes], size[kLanes], edge[kLanes];
+        alignas(32) float a[kLanes], b[kLanes];
+        const int32_t* lev = slot == 0 ? level0 : level1;
+        for (int l = 0; l < kLanes; ++l) {
+            const int32_t sz = std::max(1, tex.width >> lev[l]);
+            const float szf = static_cast<float>(sz);
+            const float u = (s[l] > 0.0f ? s[l] : 0.0f) * szf - 0.5f;
+            const float v = (t[l] > 0.0f ? t[l] : 0.0f) * szf - 0.5f;
+            const float fu = std::floor(u), fv = std::floor(v);
+            a[l] = u - fu;
+            b[l] = v - fv;
+            const int32_t ix = std::fabs(fu) < 2147483648.0f ? static_cast<int32_t>(fu) : INT32_MIN;
+            const int32_t iy = std::fabs(fv) < 2147483648.0f ? static_cast<int32_t>(fv) : INT32_MIN;
+            x0[l] = ix;
+            y0[l] = iy;
+            size[l] = sz;
+            edge[l] = (ix < 0) | (ix + 1 > sz - 1) | (iy < 0) | (iy + 1 > sz - 1);
+        }
+        // Edge lanes: the general footprint (and the vector-wide corner decision).
+        std::array<Footprint, kLanes> fp;
+        bool anyEdge = false, anyCorner = false;
+        for (int l = 0; l < kLanes; ++l) anyEdge |= edge[l] != 0;
+        if (anyEdge)
+            for (int l = 0; l < kLanes; ++l)
+                if (edge[l]) {
+                    fp[l] = SeamlessLinear(s[l], t[l], face[l], size[l]);
+                    anyCorner |= fp[l].corner >= 0;
+                }
+        for (int l = 0; l < kLanes; ++l) {
+            if (!(live & (1u << l)) || (slot == 1 && frac[l] == 0.0f)) continue;
+            const int lv = lev[l];
+            const float* texels = pt.levelsF[static_cast<size_t>(lv)].data();
+            RgbaF v;
+            if (edge[l]) {
+                v = FilterFootprint({texels, 0}, fp[l], anyCorner, 1.0f, nullptr);
+            } else {
+                const int32_t sz = size[l];
+                const float* t00 = texels + 4 * static_cast<size_t>((face[l] * sz + y0[l]) * sz + x0[l]);
+                const float* t10 = t00 + 4 * static_cast<size_t>(sz);
+                if (anyCorner) {
+                    Footprint f;
+                    f.a = a[l];
+                    f.b = b[l];
+                    const int32_t base = (face[l] * sz + y0[l]) * sz + x0[l];
+                    f.texel = {base, base + 1, base + sz, base + sz + 1};
+                    v = FilterFootprint({texels, 0}, f, true, 1.0f, nullptr);
+                } else {
+                    for (int c = 0; c < 4; ++c) {
+                        const float r0 = LerpF(a[l], t00[c], t00[4 + c]);
+                        const float r1 = LerpF(a[l], t10[c], t10[4 + c]);
+                        v[c] = LerpF(b[l], r0, r1);
+                    }
+                }
+            }
+            if (slot == 0)
+                (*colour)[l] = v;
+            else
+                for (int c = 0; c < 4; ++c) (*colour)[l][c] = LerpF(frac[l], (*colour)[l][c], v[c]);
+        }
+    }
+}
+
+}  // namespace
+}  // namespace pem::raster::isa
