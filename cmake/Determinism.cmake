@@ -5,7 +5,7 @@ function(pem_target_defaults target)
   target_compile_options(${target} PRIVATE
     -ffp-contract=off -fno-fast-math -fno-finite-math-only
     -Wall -Wextra -Wpedantic -Wshadow -Wdouble-promotion -Wimplicit-fallthrough
-    -Wnon-virtual-dtor -Wcast-align -Wnull-dereference)
+    -Wnon-virtual-dtor -Wcast-align)
   if(PEM_WERROR)
     target_compile_options(${target} PRIVATE -Werror)
   endif()

@@ -146,6 +146,7 @@ RenderingMatrix BuildRenderingMatrix(const PreparedFrame& prepared, const Render
     m.rows = static_cast<int64_t>(4 * n);
     m.cols = 4 * static_cast<int64_t>(prepared.indexer().TotalTexels());
     m.offset.assign(4 * n, 0.0);
+    m.fragments.assign(n, 0);
     for (size_t i = 0; i < n; ++i)
         for (int c = 0; c < 4; ++c) m.offset[4 * i + c] = frame.clear[c] / 255.0;
     std::vector<std::vector<std::pair<uint32_t, double>>> rows(4 * n);

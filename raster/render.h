@@ -78,6 +78,7 @@ struct RenderingMatrix {
     std::vector<double> val;
     std::vector<double> offset;    // constant term per row (clear colour, untextured passes)
     std::vector<double> rendered;  // the frame as rendered, per row, in [0, 1] units
+    std::vector<uint16_t> fragments;  // per pixel: fragments written since the last unblended one
 };
 
 RenderingMatrix BuildRenderingMatrix(const PreparedFrame& frame, const RenderOptions& options);

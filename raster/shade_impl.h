@@ -86,6 +86,8 @@ void ShadeGroup(const FragmentTarget& tg, const Pass& pass, const TriangleSetup&
 
         if (wantTaps) {
             // Matrix rows: blend none replaces, add accumulates (checked by the caller).
+            uint16_t& frags = tg.matrix->fragments[pixel];
+            frags = pass.blend.enabled ? static_cast<uint16_t>(frags + 1) : 1;
             for (int c = 0; c < 4; ++c) {
                 auto& row = (*tg.rows)[4 * pixel + static_cast<size_t>(c)];
                 double& off = tg.matrix->offset[4 * pixel + static_cast<size_t>(c)];

@@ -221,9 +221,17 @@ void SetupVertexArray(const Pass& pass, GlObjects* objects) {
     attrib(0, 4, 0);
     for (int u = 0; u < pass.numUnits; ++u) attrib(GLuint(1 + u), 3, 4 + 3 * u);
     attrib(3, 4, 4 + 3 * pass.numUnits);
-    if (!pass.indices.empty())
-        MakeBuffer(GL_ELEMENT_ARRAY_BUFFER, pass.indices.data(),
-                   pass.indices.size() * sizeof(uint32_t), objects);
+    // Always an index buffer (0..n-1 for non-indexed passes): Mesa 22.3.6 llvmpipe's
+    // glDrawArrays path analyses triangle lists for rectangles and can drop a whole draw when a
+    // triangle is degenerate in y; indexed draws do not take that path.
+    std::vector<uint32_t> sequential;
+    if (pass.indices.empty()) {
+        sequential.resize(pass.vertices.size());
+        for (size_t i = 0; i < sequential.size(); ++i) sequential[i] = uint32_t(i);
+    }
+    const std::vector<uint32_t>& indices = pass.indices.empty() ? sequential : pass.indices;
+    MakeBuffer(GL_ELEMENT_ARRAY_BUFFER, indices.data(), indices.size() * sizeof(uint32_t),
+               objects);
 }
 
 PassDraw PreparePass(const Frame& frame, const Pass& pass, std::map<ProgramKey, GLuint>* programs,
@@ -287,10 +295,8 @@ void DrawPass(const Frame& frame, const Pass& pass, const PassDraw& draw,
     SetBlend(pass.blend);
     glUseProgram(draw.program);
     glBindVertexArray(draw.vertexArray);
-    if (pass.indices.empty())
-        glDrawArrays(GL_TRIANGLES, 0, GLsizei(pass.vertices.size()));
-    else
-        glDrawElements(GL_TRIANGLES, GLsizei(pass.indices.size()), GL_UNSIGNED_INT, nullptr);
+    const size_t count = pass.indices.empty() ? pass.vertices.size() : pass.indices.size();
+    glDrawElements(GL_TRIANGLES, GLsizei(count - count % 3), GL_UNSIGNED_INT, nullptr);
 }
 
 // Framebuffer ---------------------------------------------------------------------------------

@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cstdio>
 #include <exception>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -70,7 +71,12 @@ int RunRaster(const RasterArgs& args) {
 
     // Outputs: matrix first (it may refuse a non-linear frame), then the picture.
     if (!args.matrixPath.empty()) {
-        const raster::RenderingMatrix a = raster::BuildRenderingMatrix(prepared, options);
+        raster::RenderingMatrix a;
+        try {
+            a = raster::BuildRenderingMatrix(prepared, options);
+        } catch (const std::invalid_argument& e) {
+            throw InputError(args.casePath, e.what());
+        }
         const std::string stem = MatrixStem(args.matrixPath);
         cli::WriteMatrixMarket(args.matrixPath, a);
         cli::WriteVectorMarket(stem + ".rendered.mtx", a.rendered, "rendered frame per row");

@@ -1,0 +1,64 @@
+// SPDX-License-Identifier: MIT
+// camera.cpp — ViewMatrix / ProjectionMatrix (GLM's GL conventions) and the pixel-centre ray.
+// The camera basis is computed exactly as glm::lookAt does, so PixelRay and ViewMatrix agree.
+// Not here: clipping or any rasterization (raster/render.h).
+#include "raster/camera.h"
+
+#include <cmath>
+#include <glm/gtc/matrix_transform.hpp>
+
+namespace pem::raster {
+
+namespace {
+
+// The orthonormal camera frame of glm::lookAt: s (right), u (up), f (forward).
+struct Basis {
+    glm::vec3 s, u, f;
+};
+
+Basis CameraBasis(const Camera& c) {
+    const glm::vec3 f = glm::normalize(c.target - c.eye);
+    const glm::vec3 s = glm::normalize(glm::cross(f, c.up));
+    return {s, glm::cross(s, f), f};
+}
+
+}  // namespace
+
+glm::mat4 ViewMatrix(const Camera& camera) {
+    return glm::lookAt(camera.eye, camera.target, camera.up);
+}
+
+glm::mat4 ProjectionMatrix(const Camera& camera, float zNear, float zFar) {
+    return glm::perspective(camera.fovYRadians, camera.Aspect(), zNear, zFar);
+}
+
+glm::mat4 ViewProjection(const Camera& camera, float zNear, float zFar) {
+    return ProjectionMatrix(camera, zNear, zFar) * ViewMatrix(camera);
+}
+
+Ray PixelRay(const Camera& camera, float px, float py) {
+    // Step 1: image point → NDC (y flips: row 0 is the top, NDC +1).
+    const float ndcX = 2.0f * px / static_cast<float>(camera.width) - 1.0f;
+    const float ndcY = 1.0f - 2.0f * py / static_cast<float>(camera.height);
+    // Step 2: NDC → camera-space direction on the plane z = -1.
+    const float tanHalf = std::tan(0.5f * camera.fovYRadians);
+    const float x = ndcX * tanHalf * camera.Aspect();
+    const float y = ndcY * tanHalf;
+    // Step 3: camera → world with the lookAt basis.
+    const Basis b = CameraBasis(camera);
+    return {camera.eye, glm::normalize(x * b.s + y * b.u + b.f)};
+}
+
+glm::vec2 ProjectToImage(const Camera& camera, const glm::vec3& p, float* depth) {
+    const Basis b = CameraBasis(camera);
+    const glm::vec3 d = p - camera.eye;
+    const float z = glm::dot(d, b.f);  // distance along the view axis
+    if (depth) *depth = z;
+    const float tanHalf = std::tan(0.5f * camera.fovYRadians);
+    const float ndcX = glm::dot(d, b.s) / (z * tanHalf * camera.Aspect());
+    const float ndcY = glm::dot(d, b.u) / (z * tanHalf);
+    return {(ndcX + 1.0f) * 0.5f * static_cast<float>(camera.width),
+            (1.0f - ndcY) * 0.5f * static_cast<float>(camera.height)};
+}
+
+}  // namespace pem::raster

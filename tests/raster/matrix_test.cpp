@@ -1,0 +1,158 @@
+// SPDX-License-Identifier: MIT
+// matrix_test.cpp — the rendering matrix against the renderer it describes:
+//  - Linear profile: render(x) = A x + offset to float rounding for random texels x;
+//    rendering a one-hot texel gives column j of A; <A x, y> = <x, A^T y>.
+//  - Llvmpipe profile: the 8-bit frame is within the stated bound of A x + offset:
+//    |255 y - 255 (A x + c)| <= P * (0.5 + 1.5 * [8-bit path]) + 1e-3 per channel, P = the
+//    fragments blended into the pixel since its last unblended write (RenderingMatrix::fragments),
+//    for pixels whose exact value stays below 1 and whose modulation is <= 1.
+//    Float path: the sample is exact up to float rounding, so only the final RNE (<= 0.5) counts.
+//    8-bit path: each row lerp and the column lerp round to 8 bits (<= 0.5 each, the column
+//    lerp carries the rows' error: <= 1.0), the MIP lerp adds 0.5 more: <= 1.5 on the texel
+//    value, times the modulating colour (<= 1 here), then the final RNE: <= 2.0 in all.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "raster/render.h"
+#include "tests/case_generator.h"
+
+namespace pem::raster {
+namespace {
+
+using test::NamedCase;
+
+// Frames whose passes are linear in the texels (blend none/add), from the conformance corpus.
+std::vector<NamedCase> LinearFrames() {
+    std::vector<NamedCase> out;
+    for (NamedCase& c : test::ConformanceCases()) {
+        bool linear = true;
+        for (const Pass& p : c.frame.passes)
+            linear &= !p.blend.enabled || p.blend == BlendState::Additive();
+        if (linear && c.frame.width * c.frame.height <= 96 * 96) out.push_back(std::move(c));
+    }
+    return out;
+}
+
+std::vector<double> Apply(const RenderingMatrix& a, const std::vector<double>& x) {
+    std::vector<double> y(static_cast<size_t>(a.rows));
+    for (int64_t r = 0; r < a.rows; ++r) {
+        double s = a.offset[static_cast<size_t>(r)];
+        for (int64_t k = a.rowPtr[static_cast<size_t>(r)]; k < a.rowPtr[static_cast<size_t>(r) + 1]; ++k)
+            s += a.val[static_cast<size_t>(k)] * x[a.col[static_cast<size_t>(k)]];
+        y[static_cast<size_t>(r)] = s;
+    }
+    return y;
+}
+
+// x: texel bytes / 255, column 4 * texel + channel.
+std::vector<double> TexelVector(const Frame& f) {
+    std::vector<double> x;
+    for (const Texture& t : f.textures)
+        for (const auto& level : t.levels)
+            for (uint8_t b : level) x.push_back(b / 255.0);
+    return x;
+}
+
+TEST(RenderingMatrix, LinearProfileEqualsRender) {
+    RenderOptions opt;
+    opt.profile = Profile::Linear;
+    int checked = 0;
+    for (const NamedCase& c : LinearFrames()) {
+        const PreparedFrame pf(c.frame);
+        const RenderingMatrix a = BuildRenderingMatrix(pf, opt);
+        ASSERT_EQ(a.cols, static_cast<int64_t>(TexelVector(c.frame).size())) << c.name;
+        const std::vector<double> y = Apply(a, TexelVector(c.frame));
+        const ImageF img = Render(pf, opt).imageF;
+        for (size_t i = 0; i < y.size(); ++i) {
+            const double tol = 1e-5 * std::max(1.0, std::fabs(y[i])) + 1e-6;
+            ASSERT_NEAR(img.rgba[i], y[i], tol) << c.name << " row " << i;
+        }
+        ++checked;
+    }
+    EXPECT_GT(checked, 40);
+}
+
+TEST(RenderingMatrix, OneHotTexelRendersColumn) {
+    RenderOptions opt;
+    opt.profile = Profile::Linear;
+    Frame f = test::ConformanceCases()[0].frame;  // a reflective sphere, trilinear, seamless
+    f.clear = {0, 0, 0, 0};
+    for (auto& level : f.textures[0].levels) std::fill(level.begin(), level.end(), 0);
+    const RenderingMatrix a = BuildRenderingMatrix(PreparedFrame(f), opt);
+    // Columns touched by the frame: pick a few of them and one untouched texel.
+    std::vector<uint32_t> cols = {a.col[a.col.size() / 3], a.col[a.col.size() / 2],
+                                  a.col[a.col.size() - 1]};
+    cols.push_back(0);  // texel 0, channel 0 (+X face corner of level 0: not visible here)
+    for (uint32_t col : cols) {
+        const uint32_t texel = col / 4, channel = col % 4;
+        Frame g = f;
+        // Locate the texel's byte: levels are concatenated in texel order.
+        uint32_t base = 0;
+        for (auto& level : g.textures[0].levels) {
+            const uint32_t n = static_cast<uint32_t>(level.size() / 4);
+            if (texel < base + n) {
+                for (int c = 0; c < 4; ++c) level[4 * (texel - base) + static_cast<uint32_t>(c)] = 255;
+                break;
+            }
+            base += n;
+        }
+        const ImageF img = Render(PreparedFrame(g), opt).imageF;
+        for (int64_t r = 0; r < a.rows; ++r) {
+            if (static_cast<uint32_t>(r % 4) != channel) continue;
+            double expect = 0;
+            for (int64_t k = a.rowPtr[static_cast<size_t>(r)]; k < a.rowPtr[static_cast<size_t>(r) + 1]; ++k)
+                if (a.col[static_cast<size_t>(k)] == col) expect = a.val[static_cast<size_t>(k)];
+            ASSERT_NEAR(img.rgba[static_cast<size_t>(r)], expect, 1e-6) << "column " << col << " row " << r;
+        }
+    }
+}
+
+TEST(RenderingMatrix, AdjointIdentity) {
+    RenderOptions opt;
+    opt.profile = Profile::Linear;
+    const Frame f = test::ConformanceCases()[0].frame;
+    const RenderingMatrix a = BuildRenderingMatrix(PreparedFrame(f), opt);
+    std::vector<double> x(static_cast<size_t>(a.cols)), y(static_cast<size_t>(a.rows));
+    uint64_t s = 12345;
+    auto rnd = [&] { s = s * 6364136223846793005ull + 1442695040888963407ull; return static_cast<double>(s >> 11) / 9007199254740992.0 - 0.5; };
+    for (double& v : x) v = rnd();
+    for (double& v : y) v = rnd();
+    double axy = 0, xaty = 0;
+    std::vector<double> aty(x.size(), 0.0);
+    for (int64_t r = 0; r < a.rows; ++r)
+        for (int64_t k = a.rowPtr[static_cast<size_t>(r)]; k < a.rowPtr[static_cast<size_t>(r) + 1]; ++k) {
+            axy += a.val[static_cast<size_t>(k)] * x[a.col[static_cast<size_t>(k)]] * y[static_cast<size_t>(r)];
+            aty[a.col[static_cast<size_t>(k)]] += a.val[static_cast<size_t>(k)] * y[static_cast<size_t>(r)];
+        }
+    for (size_t j = 0; j < x.size(); ++j) xaty += x[j] * aty[j];
+    EXPECT_NEAR(axy, xaty, 1e-9 * (std::fabs(axy) + 1.0));
+    EXPECT_GT(a.val.size(), 1000u);
+    for (uint32_t c : a.col) ASSERT_LT(static_cast<int64_t>(c), a.cols);
+}
+
+TEST(RenderingMatrix, LlvmpipeFrameWithinStatedBound) {
+    int checked = 0;
+    for (const NamedCase& c : LinearFrames()) {
+        const PreparedFrame pf(c.frame);
+        const RenderingMatrix a = BuildRenderingMatrix(pf, {});
+        const std::vector<double> y = Apply(a, TexelVector(c.frame));
+        // Passes covering each pixel (the number of roundings), and whether an 8-bit path is used.
+        bool fixed8 = false;
+        for (const Texture& t : c.frame.textures)
+            fixed8 |= t.kind == TextureKind::Tex2D || !t.sampler.seamless ||
+                      (t.sampler.minFilter == Filter::Nearest && t.sampler.magFilter == Filter::Nearest);
+        const double perPass = 0.5 + (fixed8 ? 1.5 : 0.0);
+        for (size_t i = 0; i < y.size(); ++i) {
+            if (y[i] > 1.0 - 1e-9 || y[i] < 0.0) continue;  // saturated
+            const double d = std::fabs(255.0 * a.rendered[i] - 255.0 * y[i]);
+            ASSERT_LE(d, a.fragments[i / 4] * perPass + 1e-3) << c.name << " row " << i;
+        }
+        ++checked;
+    }
+    EXPECT_GT(checked, 40);
+}
+
+}  // namespace
+}  // namespace pem::raster

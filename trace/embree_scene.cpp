@@ -1,0 +1,219 @@
+// SPDX-License-Identifier: MIT
+// embree_scene.cpp — the ONLY includer of <embree3/rtcore.h> (conventions in embree_scene.h).
+// Order of Embree calls follows Embree's tutorials/minimal: device → per-object geometry
+// (buffers → commit → attach → release our reference) → scene flags/quality → commit scene.
+// Not here: anything about materials or shading.
+#include "trace/embree_scene.h"
+
+#include <embree3/rtcore.h>
+
+#include <algorithm>
+#include <atomic>
+#include <mutex>
+#include <stdexcept>
+
+namespace pem::trace {
+
+// Device handle plus the error slot the callback writes (shared by every EmbreeScene built on
+// it, so the device outlives them).
+struct EmbreeDevice::State {
+    RTCDevice device = nullptr;
+    std::string config;
+    std::mutex mutex;
+    std::atomic<bool> failed{false};
+    std::string message;
+
+    ~State() {
+        if (device) rtcReleaseDevice(device);
+    }
+
+    // Throws if the callback recorded an error since the last check.
+    void Check(const char* call) {
+        if (!failed.load(std::memory_order_relaxed)) return;
+        std::lock_guard<std::mutex> lock(mutex);
+        const std::string text = message;
+        message.clear();
+        failed = false;
+        throw std::runtime_error(std::string("Embree: ") + call + ": " + text);
+    }
+};
+
+namespace {
+
+// Records the first message; the wrapper throws after the call returns (see header).
+void OnEmbreeError(void* user, RTCError code, const char* text) {
+    auto* state = static_cast<EmbreeDevice::State*>(user);
+    std::lock_guard<std::mutex> lock(state->mutex);
+    if (state->failed) return;
+    state->message = (text ? std::string(text) : std::string("no message")) + " (code " +
+                     std::to_string(static_cast<int>(code)) + ")";
+    state->failed = true;
+}
+
+bool CpuHasAvx2() {
+#if defined(__x86_64__) || defined(__i386__)
+    return __builtin_cpu_supports("avx2");
+#else
+    return false;
+#endif
+}
+
+}  // namespace
+
+std::string EmbreeConfig(const EmbreeOptions& options) {
+    std::string config;
+    auto add = [&](const std::string& item) { config += (config.empty() ? "" : ",") + item; };
+    if (options.threads > 0) add("threads=" + std::to_string(options.threads));
+    if (options.isa == "auto") {
+        if (CpuHasAvx2()) add("isa=avx2");
+    } else if (!options.isa.empty()) {
+        add("isa=" + options.isa);
+    }
+    return config;
+}
+
+EmbreeDevice::EmbreeDevice(const EmbreeOptions& options) : state_(std::make_shared<State>()) {
+    state_->config = EmbreeConfig(options);
+    state_->device = rtcNewDevice(state_->config.c_str());
+    if (!state_->device)
+        throw std::runtime_error("Embree: rtcNewDevice(\"" + state_->config + "\") failed (code " +
+                                 std::to_string(static_cast<int>(rtcGetDeviceError(nullptr))) + ")");
+    rtcSetDeviceErrorFunction(state_->device, OnEmbreeError, state_.get());
+}
+
+const std::string& EmbreeDevice::config() const { return state_->config; }
+
+// EmbreeScene ----------------------------------------------------------------------------------
+
+struct EmbreeScene::Impl {
+    std::shared_ptr<EmbreeDevice::State> device;
+    RTCScene scene = nullptr;
+    ~Impl() {
+        if (scene) rtcReleaseScene(scene);
+    }
+};
+
+namespace {
+
+// One triangle geometry for one object; Embree owns (and pads) the buffers it allocates.
+void AddObject(RTCDevice device, RTCScene scene, const Object& obj, unsigned id) {
+    RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    if (!geom) return;  // the error callback has the reason
+    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                          3 * sizeof(float), obj.positions.size()));
+    auto* t = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                             3 * sizeof(unsigned), obj.triangles.size()));
+    if (v && t) {
+        for (size_t i = 0; i < obj.positions.size(); ++i)
+            for (size_t k = 0; k < 3; ++k) v[3 * i + k] = obj.positions[i][static_cast<int>(k)];
+        for (size_t i = 0; i < obj.triangles.size(); ++i)
+            for (size_t k = 0; k < 3; ++k) t[3 * i + k] = obj.triangles[i][static_cast<int>(k)];
+    }
+    rtcCommitGeometry(geom);                   // "you must commit geometry" before attaching
+    rtcAttachGeometryByID(scene, geom, id);    // geomID == object index
+    rtcReleaseGeometry(geom);                  // the scene holds its own reference now
+}
+
+RTCRayHit MakeRayHit(const raster::Ray& ray, float tnear, float tfar) {
+    RTCRayHit rh{};
+    rh.ray.org_x = ray.origin.x, rh.ray.org_y = ray.origin.y, rh.ray.org_z = ray.origin.z;
+    rh.ray.dir_x = ray.dir.x, rh.ray.dir_y = ray.dir.y, rh.ray.dir_z = ray.dir.z;
+    rh.ray.tnear = tnear;
+    rh.ray.tfar = tfar;
+    rh.ray.mask = ~0u;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    return rh;
+}
+
+Hit ToHit(float t, unsigned geomID, unsigned primID, float u, float v, glm::vec3 ng) {
+    Hit h;
+    h.t = t;
+    h.object = static_cast<int>(geomID);
+    h.prim = static_cast<int>(primID);
+    h.u = u;
+    h.v = v;
+    const float len = glm::length(ng);
+    h.ng = len > 0.0f ? ng / len : ng;
+    h.valid = true;
+    return h;
+}
+
+// IntersectAll: the context carries the output list; the filter records and rejects.
+struct CollectContext {
+    RTCIntersectContext context;  // first member: Embree passes &context back to the filter
+    std::vector<Hit>* hits;
+};
+
+void CollectFilter(const RTCFilterFunctionNArguments* args) {
+    const auto* cc = reinterpret_cast<const CollectContext*>(args->context);
+    for (unsigned i = 0; i < args->N; ++i) {
+        if (args->valid[i] == 0) continue;
+        const glm::vec3 ng(RTCHitN_Ng_x(args->hit, args->N, i), RTCHitN_Ng_y(args->hit, args->N, i),
+                           RTCHitN_Ng_z(args->hit, args->N, i));
+        cc->hits->push_back(ToHit(RTCRayN_tfar(args->ray, args->N, i), RTCHitN_geomID(args->hit, args->N, i),
+                                  RTCHitN_primID(args->hit, args->N, i), RTCHitN_u(args->hit, args->N, i),
+                                  RTCHitN_v(args->hit, args->N, i), ng));
+        args->valid[i] = 0;  // reject: traversal continues with the original tfar
+    }
+}
+
+}  // namespace
+
+EmbreeScene::EmbreeScene(const EmbreeDevice& device, const Scene& scene) : impl_(std::make_unique<Impl>()) {
+    impl_->device = device.state();
+    RTCDevice dev = impl_->device->device;
+    impl_->scene = rtcNewScene(dev);
+    impl_->device->Check("rtcNewScene");
+    for (size_t i = 0; i < scene.objects.size(); ++i) AddObject(dev, impl_->scene, scene.objects[i], static_cast<unsigned>(i));
+    impl_->device->Check("geometry setup");
+    rtcSetSceneFlags(impl_->scene, RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);
+    rtcSetSceneBuildQuality(impl_->scene, RTC_BUILD_QUALITY_MEDIUM);
+    rtcCommitScene(impl_->scene);  // builds the BVH (TBB, deterministic for MEDIUM)
+    impl_->device->Check("rtcCommitScene");
+}
+
+EmbreeScene::~EmbreeScene() = default;
+EmbreeScene::EmbreeScene(EmbreeScene&&) noexcept = default;
+EmbreeScene& EmbreeScene::operator=(EmbreeScene&&) noexcept = default;
+
+Hit EmbreeScene::Intersect(const raster::Ray& ray, float tnear, float tfar) const {
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    RTCRayHit rh = MakeRayHit(ray, tnear, tfar);
+    rtcIntersect1(impl_->scene, &ctx, &rh);
+    impl_->device->Check("rtcIntersect1");
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return Hit{};
+    return ToHit(rh.ray.tfar, rh.hit.geomID, rh.hit.primID, rh.hit.u, rh.hit.v,
+                 glm::vec3(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z));
+}
+
+bool EmbreeScene::Occluded(const raster::Ray& ray, float tnear, float tfar) const {
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    RTCRay r = MakeRayHit(ray, tnear, tfar).ray;
+    rtcOccluded1(impl_->scene, &ctx, &r);
+    impl_->device->Check("rtcOccluded1");
+    return r.tfar < 0.0f;  // Embree sets tfar = -inf on a hit
+}
+
+std::vector<Hit> EmbreeScene::IntersectAll(const raster::Ray& ray, float tnear, float tfar) const {
+    std::vector<Hit> hits;
+    CollectContext cc{};
+    rtcInitIntersectContext(&cc.context);
+    cc.context.filter = CollectFilter;
+    cc.hits = &hits;
+    RTCRayHit rh = MakeRayHit(ray, tnear, tfar);
+    rtcIntersect1(impl_->scene, &cc.context, &rh);
+    impl_->device->Check("rtcIntersect1 (all hits)");
+    // Deterministic order; drop repeats (a primitive referenced by several BVH leaves).
+    std::sort(hits.begin(), hits.end(), [](const Hit& a, const Hit& b) {
+        return a.t != b.t ? a.t < b.t : a.object != b.object ? a.object < b.object : a.prim < b.prim;
+    });
+    hits.erase(std::unique(hits.begin(), hits.end(),
+                           [](const Hit& a, const Hit& b) { return a.object == b.object && a.prim == b.prim; }),
+               hits.end());
+    return hits;
+}
+
+}  // namespace pem::trace
