@@ -254,6 +254,13 @@ void FilterFloat(const PreparedFrame& frame, const Texture& tex, const PreparedT
     for (int l = 0; l < kLanes; ++l) anyLerp |= ls.lod[l].frac > 0.0f;
     const int slots = (s.mipFilter == MipFilter::Linear && anyLerp) ? 2 : 1;
 
+    // With min != mag, a block whose lanes need both filters is sampled with LINEAR addressing
+    // throughout (lp_build_sample_mipmap_both); otherwise each lane's own filter applies.
+    bool anyLinear = false;
+    for (int l = 0; l < kLanes; ++l)
+        anyLinear |= (ls.lod[l].magnify ? s.magFilter : s.minFilter) == Filter::Linear;
+    if (s.minFilter == s.magFilter) anyLinear = false;
+
     std::array<RgbaF, kLanes> slot0{};
     for (int slot = 0; slot < slots; ++slot) {
         // Footprints of all lanes, then the vector-wide corner decision.
@@ -269,12 +276,17 @@ void FilterFloat(const PreparedFrame& frame, const Texture& tex, const PreparedT
             const Filter filter = lod.magnify ? s.magFilter : s.minFilter;
             const Wrap ws = cube ? Wrap::ClampToEdge : s.wrapS;
             const Wrap wt = cube ? Wrap::ClampToEdge : s.wrapT;
-            if (filter == Filter::Nearest)
+            if (filter == Filter::Nearest && !anyLinear)
                 fp[l] = PlainNearest(ls.s[l], ls.t[l], ls.face[l], w, h, ws, wt);
             else if (cube && s.seamless)
                 fp[l] = SeamlessLinear(ls.s[l], ls.t[l], ls.face[l], w);
             else
                 fp[l] = PlainLinear(ls.s[l], ls.t[l], ls.face[l], w, h, ws, wt);
+            if (filter == Filter::Nearest && anyLinear) {
+                // llvmpipe's mixed min/mag block: linear addressing, weights forced to 0 or 1.
+                fp[l].a = fp[l].a > 0.5f ? 1.0f : 0.0f;
+                fp[l].b = fp[l].b > 0.5f ? 1.0f : 0.0f;
+            }
             anyCorner |= fp[l].corner >= 0;
         }
         for (int l = 0; l < kLanes; ++l) {

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <glm/gtc/matrix_transform.hpp>
 #include <string>
+#include <tuple>
 
 namespace pem::test {
 namespace {
@@ -161,6 +162,23 @@ void Spheres(std::vector<NamedCase>* out) {
                                         (seamless ? "_seamless" : "_plain"),
                                     f});
                 }
+    // Magnified centre, minified rim, min != mag: blocks that mix both filters.
+    for (auto [min, mip, mag] : {std::tuple{Filter::Linear, MipFilter::Linear, Filter::Nearest},
+                                 std::tuple{Filter::Nearest, MipFilter::Nearest, Filter::Linear},
+                                 std::tuple{Filter::Nearest, MipFilter::Linear, Filter::Linear},
+                                 std::tuple{Filter::Linear, MipFilter::None, Filter::Nearest}}) {
+        for (bool seamless : {true, false}) {
+            Frame f = NewFrame(96, 96);
+            f.textures.push_back(Cube(128, Sampler(min, mip, mag, seamless), ++seed));
+            Pass p;
+            AddSphere(&p, 32, 40, 1.0f, {0.1f, 0.3f, 2.2f}, {0, 0, 0}, 1.0f, 1.0f);
+            f.passes.push_back(p);
+            out->push_back({std::string("mixed_") + FilterName(min, mip) + "_mag_" +
+                                (mag == Filter::Linear ? "linear" : "nearest") +
+                                (seamless ? "_seamless" : "_plain"),
+                            f});
+        }
+    }
     // A large cube (strong minification at the rim) and a tiny one (magnification).
     for (int size : {256, 2}) {
         Frame f = NewFrame(128, 96);

@@ -5,8 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
-#include <tuple>
 #include <ostream>
+#include <tuple>
 #include <utility>
 
 namespace pem::trace {
@@ -70,7 +70,7 @@ void AssignWholeObjects(std::span<const HitRecord> records, int nClusters,
 
 // Per cluster: records, member objects and the shell radius with the frontmost-per-ray rule.
 std::vector<LayerCluster> SummarizeClusters(std::span<const HitRecord> records,
-                                     const std::vector<int>& assignment, int nClusters) {
+                                            const std::vector<int>& assignment, int nClusters) {
     std::vector<LayerCluster> clusters(static_cast<size_t>(nClusters));
     std::map<std::tuple<int, uint32_t, uint64_t>, double> frontmost;  // (cluster, view, ray)
     for (size_t i = 0; i < records.size(); ++i) {
@@ -145,8 +145,8 @@ LayerClustering ClusterLayers(std::span<const HitRecord> records, int nLayers, i
 }
 
 std::ostream& operator<<(std::ostream& os, const LayerCluster& layer) {
-    os << "LayerCluster{radius " << layer.radius << ", records " << layer.recordCount << ", samples "
-       << layer.shellSampleCount << ", objects [";
+    os << "LayerCluster{radius " << layer.radius << ", records " << layer.recordCount
+       << ", samples " << layer.shellSampleCount << ", objects [";
     for (size_t i = 0; i < layer.objects.size(); ++i) os << (i ? " " : "") << layer.objects[i];
     return os << "]}";
 }

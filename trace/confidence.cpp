@@ -20,7 +20,8 @@ double MaxPairAngleDeg(std::span<const glm::vec3> dirs) {
         if (dirs[i] == glm::vec3(0.0f)) continue;
         for (size_t j = i + 1; j < dirs.size(); ++j) {
             if (dirs[j] == glm::vec3(0.0f)) continue;
-            maxAngle = std::max(maxAngle, AngleBetweenDeg(glm::dvec3(dirs[i]), glm::dvec3(dirs[j])));
+            maxAngle =
+                std::max(maxAngle, AngleBetweenDeg(glm::dvec3(dirs[i]), glm::dvec3(dirs[j])));
         }
     }
     return maxAngle;

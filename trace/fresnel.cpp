@@ -9,14 +9,18 @@ namespace pem::trace {
 
 namespace {
 
-double ClampCos(double cosTheta) { return std::min(std::abs(cosTheta), 1.0); }
+double ClampCos(double cosTheta) {
+    return std::min(std::abs(cosTheta), 1.0);
+}
 
 double Pow5(double x) {
     const double x2 = x * x;
     return x2 * x2 * x;
 }
 
-double Square(double x) { return x * x; }
+double Square(double x) {
+    return x * x;
+}
 
 }  // namespace
 
@@ -46,7 +50,9 @@ double FresnelDielectric(double cosThetaI, double n1, double n2) {
     return 0.5 * (sp.rs + sp.rp);
 }
 
-double SchlickF0(double n1, double n2) { return Square((n1 - n2) / (n1 + n2)); }
+double SchlickF0(double n1, double n2) {
+    return Square((n1 - n2) / (n1 + n2));
+}
 
 double FresnelSchlick(double cosTheta, double f0) {
     return f0 + (1.0 - f0) * Pow5(1.0 - ClampCos(cosTheta));

@@ -1,24 +1,23 @@
 // SPDX-License-Identifier: MIT
 // fresnel.h — Fresnel reflectance of a smooth interface and the reflected/refracted directions.
-// Conventions: `cosThetaI` is the cosine of the angle between the incident ray and the normal, taken
-// as |cos| (either side works); n1 is the index of refraction on the incident side, n2 the other side.
-// Directions: `dir` is the incident propagation direction (pointing *toward* the surface), unit
-// length; `normal` is a unit normal of either orientation (it is flipped internally to face the
-// incident side). Returned directions are unit and point away from the surface.
-// Everything is double. Not here: polarization tracking, conductors' complex IOR (metals and mirrors
-// use Schlick with a given per-channel F0), dispersion.
+// Conventions: `cosThetaI` is the cosine of the angle between the incident ray and the normal,
+// taken as |cos| (either side works); n1 is the index of refraction on the incident side, n2 the
+// other side. Directions: `dir` is the incident propagation direction (pointing *toward* the
+// surface), unit length; `normal` is a unit normal of either orientation (it is flipped internally
+// to face the incident side). Returned directions are unit and point away from the surface.
+// Everything is double. Not here: polarization tracking, conductors' complex IOR (metals and
+// mirrors use Schlick with a given per-channel F0), dispersion.
 #pragma once
 
-#include <optional>
-
 #include <glm/glm.hpp>
+#include <optional>
 
 namespace pem::trace {
 
 enum class FresnelModel { Exact, Schlick };
 
-// Reflectance of the s (perpendicular) and p (parallel) polarized components. Both are 1 under total
-// internal reflection.
+// Reflectance of the s (perpendicular) and p (parallel) polarized components. Both are 1 under
+// total internal reflection.
 struct FresnelSP {
     double rs = 0.0;
     double rp = 0.0;

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
-// ray.h — trace/'s Ray (an alias of raster/camera.h's, so camera rays feed the tracer unchanged) and
-// the angle between two directions. A Ray has a float origin and direction; `dir` need not be unit
-// length unless a function says so. Code that needs accuracy converts to double (glm::dvec3).
+// ray.h — trace/'s Ray (an alias of raster/camera.h's, so camera rays feed the tracer unchanged)
+// and the angle between two directions. A Ray has a float origin and direction; `dir` need not be
+// unit length unless a function says so. Code that needs accuracy converts to double (glm::dvec3).
 // Not here: cameras and pixel rays (raster/camera.h).
 #pragma once
 

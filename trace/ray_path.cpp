@@ -16,8 +16,12 @@ namespace {
 constexpr double kRayOffset = 1e-4;
 constexpr double kMinOffsetCos = 0.1;
 
-double MaxComponent(const glm::dvec3& v) { return std::max({v.x, v.y, v.z}); }
-double MeanComponent(const glm::dvec3& v) { return (v.x + v.y + v.z) / 3.0; }
+double MaxComponent(const glm::dvec3& v) {
+    return std::max({v.x, v.y, v.z});
+}
+double MeanComponent(const glm::dvec3& v) {
+    return (v.x + v.y + v.z) / 3.0;
+}
 
 // The segment after a hit: whether it runs inside the hit's object, its absorption, and where it
 // starts (the hit position, not the offset ray origin, so the offset does not shorten the path).
@@ -48,7 +52,9 @@ Ray ContinueRay(const SurfaceHit& hit, const glm::dvec3& dir) {
     return {glm::vec3(p + dir * step), glm::vec3(dir)};
 }
 
-Ray Normalized(const Ray& ray) { return {ray.origin, glm::normalize(ray.dir)}; }
+Ray Normalized(const Ray& ray) {
+    return {ray.origin, glm::normalize(ray.dir)};
+}
 
 PathVertex MakeVertex(const SurfaceHit& hit, Event event) {
     return {hit.position, hit.shadingNormal, event, hit.entering, hit.objectId, hit.primId};
@@ -95,9 +101,8 @@ Interaction Scatter(const glm::dvec3& dir, const SurfaceHit& hit) {
 }
 
 Event GreedyChoice(const Interaction& interaction) {
-    const bool refract = interaction.refractDir &&
-                         MeanComponent(interaction.transmittance) >
-                             MeanComponent(interaction.reflectance);
+    const bool refract = interaction.refractDir && MeanComponent(interaction.transmittance) >
+                                                       MeanComponent(interaction.reflectance);
     return refract ? Event::Refract : Event::Reflect;
 }
 
@@ -180,9 +185,8 @@ std::optional<GreedyPaths> TraceGreedyPaths(const Ray& primary, SurfaceHitFn& hi
     const Ray ray = Normalized(primary);
     const std::optional<SurfaceHit> first = hits.Next(ray);
     if (!first) return std::nullopt;
-    return GreedyPaths{
-        TraceGreedyPath(ray, *first, Event::Reflect, hits, maxDepth, minWeight),
-        TraceGreedyPath(ray, *first, Event::Refract, hits, maxDepth, minWeight)};
+    return GreedyPaths{TraceGreedyPath(ray, *first, Event::Reflect, hits, maxDepth, minWeight),
+                       TraceGreedyPath(ray, *first, Event::Refract, hits, maxDepth, minWeight)};
 }
 
 std::vector<ExitRay> TraceFullTree(const Ray& primary, SurfaceHitFn& hits, int maxDepth,
@@ -221,9 +225,8 @@ std::ostream& operator<<(std::ostream& os, const RayPath& path) {
     os << "RayPath{[";
     for (const PathVertex& v : path.vertices) os << v;
     os << "] exit (" << path.exitDir.x << ", " << path.exitDir.y << ", " << path.exitDir.z
-       << ") F (" << path.F.x << ", " << path.F.y << ", " << path.F.z << ") G (" << path.G.x
-       << ", " << path.G.y << ", " << path.G.z << ")" << (path.escaped ? " escaped" : " cut")
-       << "}";
+       << ") F (" << path.F.x << ", " << path.F.y << ", " << path.F.z << ") G (" << path.G.x << ", "
+       << path.G.y << ", " << path.G.z << ")" << (path.escaped ? " escaped" : " cut") << "}";
     return os;
 }
 

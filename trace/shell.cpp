@@ -20,9 +20,13 @@ struct DRay {
     glm::dvec3 d;
 };
 
-DRay ToDouble(const Ray& ray) { return {glm::dvec3(ray.origin), glm::dvec3(ray.dir)}; }
+DRay ToDouble(const Ray& ray) {
+    return {glm::dvec3(ray.origin), glm::dvec3(ray.dir)};
+}
 
-ShellHit HitAt(const DRay& r, double t) { return {t, r.o + t * r.d, false}; }
+ShellHit HitAt(const DRay& r, double t) {
+    return {t, r.o + t * r.d, false};
+}
 
 // The smaller positive value of two candidates, if any (t > 0 only).
 std::optional<double> NearestPositive(double t0, double t1) {
@@ -45,8 +49,8 @@ std::optional<std::pair<double, double>> SolveQuadratic(double a, double b, doub
 
 // Ray against the unit sphere at the origin.
 std::optional<double> UnitSphereT(const DRay& r) {
-    const auto roots = SolveQuadratic(glm::dot(r.d, r.d), glm::dot(r.o, r.d),
-                                      glm::dot(r.o, r.o) - 1.0);
+    const auto roots =
+        SolveQuadratic(glm::dot(r.d, r.d), glm::dot(r.o, r.d), glm::dot(r.o, r.o) - 1.0);
     if (!roots) return std::nullopt;
     return NearestPositive(roots->first, roots->second);
 }
@@ -102,8 +106,8 @@ std::optional<ShellHit> Intersect(const CylinderShell& s, const Ray& ray) {
     // Step 1: the side, a quadratic in x and z, limited to [yMin, yMax].
     const glm::dvec2 o(r.o.x - s.axisXZ.x, r.o.z - s.axisXZ.y);
     const glm::dvec2 d(r.d.x, r.d.z);
-    const auto roots = SolveQuadratic(glm::dot(d, d), glm::dot(o, d),
-                                      glm::dot(o, o) - s.radius * s.radius);
+    const auto roots =
+        SolveQuadratic(glm::dot(d, d), glm::dot(o, d), glm::dot(o, o) - s.radius * s.radius);
     auto inHeight = [&](double t) {
         const double y = r.o.y + t * r.d.y;
         return y >= s.yMin && y <= s.yMax;

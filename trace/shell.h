@@ -1,23 +1,22 @@
 // SPDX-License-Identifier: MIT
 // shell.h — EM layer geometry ("shells"): ray intersection and the cube-map lookup vector
-// (hit point minus the EM origin; cube maps need no normalization), plus fits of each shell to points.
-// Shapes: sphere, axis-aligned ellipsoid, axis-aligned box, cylinder with a vertical (y) axis (finite
-// with caps, or infinite), and the hybrid paper's quad impostor.
-// Intersection rule for closed shells: the smallest t > 0, so a ray starting inside hits the far side
-// and a ray starting outside hits the nearest front face (or misses: nullopt). `dir` need not be unit;
-// t is in units of dir. The quad always yields a point: its plane hit for t > 0, otherwise (parallel or
-// running away) the hybrid §4.2 rule: the direction's tangential component, normalized and scaled to
+// (hit point minus the EM origin; cube maps need no normalization), plus fits of each shell to
+// points. Shapes: sphere, axis-aligned ellipsoid, axis-aligned box, cylinder with a vertical (y)
+// axis (finite with caps, or infinite), and the hybrid paper's quad impostor. Intersection rule for
+// closed shells: the smallest t > 0, so a ray starting inside hits the far side and a ray starting
+// outside hits the nearest front face (or misses: nullopt). `dir` need not be unit; t is in units
+// of dir. The quad always yields a point: its plane hit for t > 0, otherwise (parallel or running
+// away) the hybrid §4.2 rule: the direction's tangential component, normalized and scaled to
 // farScale * the quad's larger half extent from the quad centre (`forced`, t = +inf). Plane hits
 // outside the quad's rectangle are kept (the texture lookup clamps). All arithmetic is double.
 // Not here: texturing the shells (infer/), choosing a shell per layer (the caller).
 #pragma once
 
 #include <cstdint>
+#include <glm/glm.hpp>
 #include <optional>
 #include <span>
 #include <variant>
-
-#include <glm/glm.hpp>
 
 #include "trace/ray.h"
 
@@ -44,7 +43,7 @@ struct BoxShell {
 struct CylinderShell {
     glm::dvec2 axisXZ{0.0};  // the vertical axis passes through (x, z)
     double radius = 1.0;
-    double yMin = -1.0;      // -inf and +inf make it infinite (then no caps)
+    double yMin = -1.0;  // -inf and +inf make it infinite (then no caps)
     double yMax = 1.0;
     bool operator==(const CylinderShell&) const = default;
 };
@@ -54,15 +53,15 @@ struct QuadShell {
     glm::dvec3 normal{0.0, 0.0, 1.0};  // unit, facing the lens object
     glm::dvec3 u{1.0, 0.0, 0.0};       // unit in-plane axes, u x v = normal
     glm::dvec3 v{0.0, 1.0, 0.0};
-    glm::dvec2 halfExtent{1.0};        // along u and v
-    double farScale = 1e3;             // forced hits lie farScale * max half extent from centre
+    glm::dvec2 halfExtent{1.0};  // along u and v
+    double farScale = 1e3;       // forced hits lie farScale * max half extent from centre
     bool operator==(const QuadShell&) const = default;
 };
 
 using Shell = std::variant<SphereShell, EllipsoidShell, BoxShell, CylinderShell, QuadShell>;
 
 struct ShellHit {
-    double t = 0.0;         // +inf for a forced quad hit
+    double t = 0.0;  // +inf for a forced quad hit
     glm::dvec3 point{0.0};
     bool forced = false;
     bool operator==(const ShellHit&) const = default;
@@ -96,8 +95,8 @@ BoxShell BoxAround(const glm::dvec3& centre, double halfSize,
 // the points' y range (or infinite).
 CylinderShell FitCylinder(std::span<const glm::dvec3> points, const glm::dvec2& axisXZ,
                           bool infinite = false);
-// Quad impostor (hybrid §4.2): least-squares plane through the centroid (normal = eigenvector of the
-// smallest covariance eigenvalue, turned toward lensCentre; u = the largest one, its largest
+// Quad impostor (hybrid §4.2): least-squares plane through the centroid (normal = eigenvector of
+// the smallest covariance eigenvalue, turned toward lensCentre; u = the largest one, its largest
 // component positive; v = normal x u). Extent = bounding rectangle of the points projected
 // orthogonally onto the plane; the centre is moved to the rectangle's centre. Fewer than 3 points
 // or collinear points use the paper's simpler normal: from the centroid toward lensCentre.

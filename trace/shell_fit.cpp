@@ -1,14 +1,14 @@
 // SPDX-License-Identifier: MIT
 // shell_fit.cpp — fitting shells to points (declared in shell.h): minimum-volume ellipsoid search,
 // boxes, cylinders, the least-squares quad impostor, and the EM origin.
-#include "trace/shell.h"
-
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
 #include <utility>
 #include <vector>
+
+#include "trace/shell.h"
 
 namespace pem::trace {
 
@@ -53,7 +53,7 @@ void SearchGrid(std::span<const glm::dvec3> squared, int n, double step, double*
 
 // Step: a symmetric 3x3 eigen decomposition by cyclic Jacobi rotations.
 struct Eigen3 {
-    std::array<double, 3> values;      // ascending
+    std::array<double, 3> values;       // ascending
     std::array<glm::dvec3, 3> vectors;  // unit, matching values
 };
 
@@ -126,8 +126,8 @@ std::pair<glm::dvec3, glm::dvec3> QuadFrame(std::span<const glm::dvec3> points,
         const Eigen3 e = SymmetricEigen(Covariance(points, centroid));
         const bool planar = e.values[1] > 1e-12 * std::max(e.values[2], 1e-300);
         if (planar) {
-            const glm::dvec3 n = glm::dot(e.vectors[0], toLens) < 0.0 ? -e.vectors[0]
-                                                                       : e.vectors[0];
+            const glm::dvec3 n =
+                glm::dot(e.vectors[0], toLens) < 0.0 ? -e.vectors[0] : e.vectors[0];
             return {n, CanonicalSign(e.vectors[2])};
         }
     }
@@ -149,7 +149,8 @@ EllipsoidShell FitEllipsoid(std::span<const glm::dvec3> points, const glm::dvec3
     SearchGrid(squared, 12, 0.5, &a, &b, &best);
     // Step 2: six refinements around the best shape, halving the step.
     double step = 0.25;
-    for (int round = 0; round < 6; ++round, step *= 0.5) SearchGrid(squared, 4, step, &a, &b, &best);
+    for (int round = 0; round < 6; ++round, step *= 0.5)
+        SearchGrid(squared, 4, step, &a, &b, &best);
     return {centre, best.radii};
 }
 

@@ -15,7 +15,7 @@
 namespace pem::trace::testing {
 
 class AnalyticSurface : public SurfaceHitFn {
-public:
+  public:
     SurfaceMaterial material;
     uint32_t objectId = 0;
     int queries = 0;
@@ -39,18 +39,18 @@ public:
         return hit;
     }
 
-protected:
+  protected:
     static constexpr double kTMin = 1e-7;
     virtual std::optional<double> NearestT(const glm::dvec3& o, const glm::dvec3& d) const = 0;
     virtual glm::dvec3 NormalAt(const glm::dvec3& p, const glm::dvec3& d, double t) const = 0;
 };
 
 class AnalyticSphere : public AnalyticSurface {
-public:
+  public:
     glm::dvec3 centre{0.0};
     double radius = 1.0;
 
-protected:
+  protected:
     std::optional<double> NearestT(const glm::dvec3& o, const glm::dvec3& d) const override {
         const glm::dvec3 oc = o - centre;
         const double a = glm::dot(d, d);
@@ -70,11 +70,11 @@ protected:
 };
 
 class AnalyticSlab : public AnalyticSurface {
-public:
+  public:
     double centreY = 0.0;
     double halfThickness = 0.5;
 
-protected:
+  protected:
     std::optional<double> NearestT(const glm::dvec3& o, const glm::dvec3& d) const override {
         if (d.y == 0.0) return std::nullopt;
         std::optional<double> best;
@@ -91,7 +91,7 @@ protected:
 
 // Nearest hit among several surfaces.
 class SurfaceList : public SurfaceHitFn {
-public:
+  public:
     std::vector<std::unique_ptr<AnalyticSurface>> surfaces;
 
     std::optional<SurfaceHit> Next(const Ray& ray) override {

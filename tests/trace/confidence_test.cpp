@@ -41,7 +41,7 @@ TEST(Confidence, Image) {
     // 2 x 1 pixels, 3 samples each: pixel 0 parallel (+ one sample without an exit ray),
     // pixel 1 spread over 2.5 degrees. A pixel without exit rays gets 0.
     const std::vector<glm::vec3> dirs{DirAt(0.0), glm::vec3(0.0f), DirAt(0.0),
-                                      DirAt(0.0), DirAt(2.5), DirAt(1.0)};
+                                      DirAt(0.0), DirAt(2.5),      DirAt(1.0)};
     const ConfidenceImage image = MakeConfidenceImage(2, 1, 3, dirs);
     ASSERT_EQ(image.values.size(), 2u);
     EXPECT_EQ(image.values[0], 1.0f);

@@ -78,8 +78,8 @@ TEST(Fresnel, TotalInternalReflectionBeyondCriticalAngle) {
     EXPECT_EQ(FresnelSchlickDielectric(beyond, n1, n2), 1.0);
     EXPECT_EQ(FresnelDielectric(std::cos(80 * kDeg), n1, n2), 1.0);
     // Refract returns nullopt there too.
-    const glm::dvec3 dir = glm::normalize(glm::dvec3(std::sin(critical + 0.1 * kDeg), 0.0,
-                                                     -std::cos(critical + 0.1 * kDeg)));
+    const glm::dvec3 dir = glm::normalize(
+        glm::dvec3(std::sin(critical + 0.1 * kDeg), 0.0, -std::cos(critical + 0.1 * kDeg)));
     EXPECT_FALSE(Refract(dir, {0, 0, 1}, n1, n2).has_value());
     // From the rare side there is never total reflection.
     EXPECT_LT(FresnelDielectric(std::cos(89.9 * kDeg), n2, n1), 1.0);

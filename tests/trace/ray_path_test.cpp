@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // ray_path_test.cpp — the greedy two-term model against the full ray tree on analytic spheres and
-// slabs (mirror: identical; glass with IOR near 1: close), slab transmittance and Snell exit, energy
-// of the full tree, cut-offs, total internal reflection and the path-difference criterion.
+// slabs (mirror: identical; glass with IOR near 1: close), slab transmittance and Snell exit,
+// energy of the full tree, cut-offs, total internal reflection and the path-difference criterion.
 #include "trace/ray_path.h"
 
 #include <gtest/gtest.h>
@@ -39,7 +39,9 @@ glm::dvec3 TreeRadiance(const std::vector<ExitRay>& leaves) {
     return sum;
 }
 
-double MaxAbs(const glm::dvec3& v) { return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)}); }
+double MaxAbs(const glm::dvec3& v) {
+    return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
+}
 
 // Primary rays toward a unit sphere at the origin, from z = 4, at several impact offsets.
 std::vector<Ray> SphereRays() {
@@ -171,9 +173,9 @@ TEST(RayPath, SlabNearIorOneGreedyApproximatesTree) {
     slab.material.absorption = {0.2, 0.1, 0.0};
     for (double deg : {0.0, 20.0, 45.0, 60.0}) {
         const double a = deg * std::numbers::pi / 180.0;
-        const Ray ray{glm::vec3(0.0f, 2.0f, 0.0f),
-                      glm::vec3(static_cast<float>(std::sin(a)), -static_cast<float>(std::cos(a)),
-                                0.0f)};
+        const Ray ray{
+            glm::vec3(0.0f, 2.0f, 0.0f),
+            glm::vec3(static_cast<float>(std::sin(a)), -static_cast<float>(std::cos(a)), 0.0f)};
         const glm::dvec3 greedy = GreedyRadiance(*TraceGreedyPaths(ray, slab, 32, 0.0));
         const glm::dvec3 full = TreeRadiance(TraceFullTree(ray, slab, 32, 0.0));
         EXPECT_LT(MaxAbs(greedy - full), 2e-3 * MaxAbs(full)) << deg;

@@ -51,29 +51,36 @@ std::vector<Ray> RandomRays(int n) {
     return rays;
 }
 
-// The march covers t <= 20; analytic hits beyond that must have no marched counterpart.
+// The march covers t <= 20; analytic hits beyond that must have no marched counterpart. A ray
+// that only grazes an edge (in and out within one march step) is invisible to the march; at most
+// a few such rays are allowed, and only when the point one step past the hit is on the start side.
 void ExpectMatchesMarch(const Shell& shell, const Inside& inside) {
     constexpr double kTMax = 20.0;
-    int hits = 0;
+    int hits = 0, grazes = 0;
     for (const Ray& ray : RandomRays(300)) {
         std::optional<ShellHit> hit = Intersect(shell, ray);
         if (hit && hit->t > kTMax) hit.reset();
         const std::optional<double> march = MarchT(inside, ray, kTMax);
-        ASSERT_EQ(hit.has_value(), march.has_value())
-            << shell.index() << " " << ray.origin.x << " " << ray.dir.x << " t " << (hit ? hit->t : -1.0);
+        const glm::dvec3 o(ray.origin), d(ray.dir);
+        if (hit && !march && inside(o + (hit->t + 1e-3) * d) == inside(o + 1e-9 * d)) {
+            ++grazes;
+            continue;
+        }
+        ASSERT_EQ(hit.has_value(), march.has_value()) << shell.index() << " " << ray.origin.x;
         if (!hit) continue;
         ++hits;
         EXPECT_NEAR(hit->t, *march, 1e-6);
-        const glm::dvec3 expected = glm::dvec3(ray.origin) + hit->t * glm::dvec3(ray.dir);
-        EXPECT_NEAR(glm::length(hit->point - expected), 0.0, 1e-9);
+        EXPECT_NEAR(glm::length(hit->point - (o + hit->t * d)), 0.0, 1e-9);
     }
     EXPECT_GT(hits, 150);
+    EXPECT_LE(grazes, 3);
 }
 
 TEST(Shell, SphereAnalytic) {
     const SphereShell s{{1.0, 2.0, 3.0}, 5.0};
     // Outside, toward the centre: the near side.
-    const std::optional<ShellHit> outside = Intersect(s, {glm::vec3(1, 2, 13), glm::vec3(0, 0, -1)});
+    const std::optional<ShellHit> outside =
+        Intersect(s, {glm::vec3(1, 2, 13), glm::vec3(0, 0, -1)});
     ASSERT_TRUE(outside);
     EXPECT_DOUBLE_EQ(outside->t, 5.0);
     EXPECT_EQ(outside->point, glm::dvec3(1, 2, 8));
@@ -130,15 +137,16 @@ TEST(Shell, BoxAndCylinderSpecialCases) {
     const CylinderShell cyl = FitCylinder(points, {0.0, 0.0});
     EXPECT_DOUBLE_EQ(cyl.radius, std::sqrt(10.0));
     EXPECT_DOUBLE_EQ(Intersect(cyl, {glm::vec3(0, 2, 0), glm::vec3(0, 1, 0)})->t, 3.0);
-    EXPECT_FALSE(Intersect(FitCylinder(points, {0.0, 0.0}, true),
-                           {glm::vec3(0, 2, 0), glm::vec3(0, 1, 0)}));
+    EXPECT_FALSE(
+        Intersect(FitCylinder(points, {0.0, 0.0}, true), {glm::vec3(0, 2, 0), glm::vec3(0, 1, 0)}));
 }
 
 TEST(Shell, EllipsoidContainsPointsAndBeatsBoundingSphere) {
     std::mt19937 rng(7);
     auto uniform = [&]() { return static_cast<double>(rng() >> 8) * 0x1.0p-24 * 2.0 - 1.0; };
     std::vector<glm::dvec3> points;
-    for (int i = 0; i < 500; ++i) points.push_back({3.0 * uniform(), 1.0 * uniform(), 0.5 * uniform()});
+    for (int i = 0; i < 500; ++i)
+        points.push_back({3.0 * uniform(), 1.0 * uniform(), 0.5 * uniform()});
     const glm::dvec3 centre(0.1, 0.0, -0.05);
     const EllipsoidShell e = FitEllipsoid(points, centre);
     for (const glm::dvec3& p : points) {
@@ -153,8 +161,8 @@ TEST(Shell, EllipsoidContainsPointsAndBeatsBoundingSphere) {
 TEST(Shell, EllipsoidThroughAxisPointsIsTheirAxes) {
     // The smallest axis-aligned ellipsoid containing +-a x, +-b y, +-c z has semi-axes (a, b, c).
     const double a = 3.0, b = 1.3, c = 0.7;
-    const std::vector<glm::dvec3> points{{a, 0, 0}, {-a, 0, 0}, {0, b, 0},
-                                         {0, -b, 0}, {0, 0, c}, {0, 0, -c}};
+    const std::vector<glm::dvec3> points{{a, 0, 0},  {-a, 0, 0}, {0, b, 0},
+                                         {0, -b, 0}, {0, 0, c},  {0, 0, -c}};
     const EllipsoidShell e = FitEllipsoid(points, glm::dvec3(0.0));
     const double optimal = Volume(EllipsoidShell{glm::dvec3(0.0), {a, b, c}});
     EXPECT_GE(Volume(e), optimal * (1.0 - 1e-9));
@@ -179,7 +187,7 @@ TEST(Shell, QuadFitRecoversPlaneAndRectangle) {
     }
     const QuadShell quad = FitQuad(points, glm::dvec3(0.0));
     EXPECT_NEAR(std::abs(glm::dot(quad.normal, n)), 1.0, 1e-12);
-    EXPECT_GT(glm::dot(quad.normal, -origin), 0.0);  // faces the lens object at the origin
+    EXPECT_GT(glm::dot(quad.normal, -origin), 0.0);         // faces the lens object at the origin
     EXPECT_NEAR(std::abs(glm::dot(quad.u, u)), 1.0, 1e-9);  // the long axis
     EXPECT_NEAR(glm::dot(glm::cross(quad.u, quad.v), quad.normal), 1.0, 1e-12);
     EXPECT_NEAR(quad.halfExtent.x, 2.0, 1e-9);
@@ -198,7 +206,8 @@ TEST(Shell, QuadForcedHitForRaysRunningAway) {
     quad.centre = {0, 0, -5};
     quad.halfExtent = {2.0, 1.0};
     // Toward the plane: the ordinary plane hit (even outside the rectangle).
-    const std::optional<ShellHit> toward = Intersect(quad, {glm::vec3(0), glm::vec3(0.6f, 0, -0.8f)});
+    const std::optional<ShellHit> toward =
+        Intersect(quad, {glm::vec3(0), glm::vec3(0.6f, 0, -0.8f)});
     ASSERT_TRUE(toward);
     EXPECT_FALSE(toward->forced);
     EXPECT_NEAR(toward->point.z, -5.0, 1e-6);
@@ -228,7 +237,7 @@ TEST(Shell, CubeLookupIsHitMinusOrigin) {
 
 TEST(Shell, EmOriginIsAreaWeighted) {
     // A big triangle (area 8) with centroid (4/3, 4/3, 0) and a small one (area 0.5) far away.
-    const std::vector<glm::vec3> positions{{0, 0, 0}, {4, 0, 0}, {0, 4, 0},
+    const std::vector<glm::vec3> positions{{0, 0, 0},  {4, 0, 0},  {0, 4, 0},
                                            {10, 0, 0}, {11, 0, 0}, {10, 1, 0}};
     const std::vector<uint32_t> indices{0, 1, 2, 3, 4, 5};
     const glm::vec3 origin = EmOrigin(positions, indices);
