@@ -70,6 +70,48 @@ Texture MakeTexture(TextureKind kind, int w, int h, const SamplerState& s, uint6
     return t;
 }
 
+// A readable environment for the benchmark and demo: per-face tinted checkerboards with a
+// grid, level 0 drawn, each further level the 2x2 box filter of the previous one.
+Texture CheckerCube(int size, const SamplerState& s) {
+    Texture t;
+    t.kind = TextureKind::Cube;
+    t.width = t.height = size;
+    t.sampler = s;
+    static const uint8_t tint[6][3] = {{230, 90, 80},  {80, 200, 120}, {240, 240, 250},
+                                       {90, 70, 60},   {90, 130, 240}, {230, 200, 80}};
+    std::vector<uint8_t> level(static_cast<size_t>(6 * size * size * 4));
+    for (int f = 0; f < 6; ++f)
+        for (int j = 0; j < size; ++j)
+            for (int i = 0; i < size; ++i) {
+                const bool check = ((i * 8 / size) + (j * 8 / size)) % 2 == 0;
+                const bool grid = i % (size / 8) == 0 || j % (size / 8) == 0;
+                uint8_t* p = &level[static_cast<size_t>(((f * size + j) * size + i) * 4)];
+                for (int c = 0; c < 3; ++c)
+                    p[c] = grid ? 20 : static_cast<uint8_t>(check ? tint[f][c] : tint[f][c] / 2);
+                p[3] = 255;
+            }
+    t.levels.push_back(level);
+    for (int n = size / 2; n >= 1; n /= 2) {
+        const std::vector<uint8_t>& prev = t.levels.back();
+        const int m = n * 2;
+        std::vector<uint8_t> next(static_cast<size_t>(6 * n * n * 4));
+        for (int f = 0; f < 6; ++f)
+            for (int j = 0; j < n; ++j)
+                for (int i = 0; i < n; ++i)
+                    for (int c = 0; c < 4; ++c) {
+                        auto at = [&](int x, int y) {
+                            return prev[static_cast<size_t>(((f * m + y) * m + x) * 4 + c)];
+                        };
+                        const int sum = at(2 * i, 2 * j) + at(2 * i + 1, 2 * j) +
+                                        at(2 * i, 2 * j + 1) + at(2 * i + 1, 2 * j + 1);
+                        next[static_cast<size_t>(((f * n + j) * n + i) * 4 + c)] =
+                            static_cast<uint8_t>((sum + 2) >> 2);
+                    }
+        t.levels.push_back(std::move(next));
+    }
+    return t;
+}
+
 Texture Cube(int size, const SamplerState& s, uint64_t seed, bool alphaRandom = false) {
     return MakeTexture(TextureKind::Cube, size, size, s, seed, alphaRandom);
 }
@@ -544,7 +586,7 @@ std::vector<NamedCase> ConformanceCases() {
 Frame BenchmarkFrame(int width, int height, int rings, int segments, int cubeSize) {
     Frame f = NewFrame(width, height);
     f.textures.push_back(
-        Cube(cubeSize, Sampler(Filter::Linear, MipFilter::Linear, Filter::Linear), 2024));
+        CheckerCube(cubeSize, Sampler(Filter::Linear, MipFilter::Linear, Filter::Linear)));
     Pass sky;
     const glm::vec3 c[4] = {{-1.2f, -0.8f, -1}, {1.2f, -0.8f, -1}, {1.2f, 0.8f, -1},
                             {-1.2f, 0.8f, -1}};

@@ -1,18 +1,21 @@
 // SPDX-License-Identifier: MIT
 // cluster.h — layer partition of the environment by LBG clustering of hit distances (hybrid §4.2).
+//
 // Input: one HitRecord per front-facing environment intersection of an outgoing ray, from all
 // viewpoints together. Continued rays (hybrid §4.1: a ray continued through occluders records every
 // front-facing hit) are given as several records with the same (viewpointId, rayId); a ray that was
 // not continued simply has one record.
+//
 // Algorithm: 1D LBG (k-means) on distance. Deterministic start: centre k is the distance at
 // quantile (k + 0.5) / N of the sorted distances. Assign each record to the nearest centre (ties to
-// the nearer, i.e. lower, index), recompute each centre as its records' mean, repeat until no
-// record changes cluster (or maxIterations). Then every object goes whole to the single cluster
-// holding most of its records (ties to the lower index). Shell radius = mean distance of the
-// cluster's records, where records of one continued ray count only through its frontmost record in
-// that cluster. Clusters left without records are removed and reported. Layers are ordered by
-// increasing radius. Not here: choosing N, building shells from layers (shell.h), discarding all
-// but the first hit per layer when building the layer images.
+// the lower index), recompute each centre as its records' mean, repeat until no record changes
+// cluster (or maxIterations). Then every object goes whole to the single cluster holding most of
+// its records (ties to the lower index). Shell radius = mean distance of the cluster's records,
+// where the records of one continued ray count only through its frontmost record in that cluster.
+// Clusters left without records are removed and reported. Layers are ordered by increasing radius.
+//
+// Not here: choosing N, building shells from layers (shell.h), discarding all but the first hit
+// per layer when building the layer images.
 #pragma once
 
 #include <cstdint>

@@ -1,12 +1,14 @@
 // SPDX-License-Identifier: MIT
 // fresnel.h — Fresnel reflectance of a smooth interface and the reflected/refracted directions.
+//
 // Conventions: `cosThetaI` is the cosine of the angle between the incident ray and the normal,
 // taken as |cos| (either side works); n1 is the index of refraction on the incident side, n2 the
-// other side. Directions: `dir` is the incident propagation direction (pointing *toward* the
-// surface), unit length; `normal` is a unit normal of either orientation (it is flipped internally
-// to face the incident side). Returned directions are unit and point away from the surface.
-// Everything is double. Not here: polarization tracking, conductors' complex IOR (metals and
-// mirrors use Schlick with a given per-channel F0), dispersion.
+// other side. `dir` is the incident propagation direction (pointing *toward* the surface), unit
+// length; `normal` is a unit normal of either orientation (it is flipped internally to face the
+// incident side). Returned directions are unit and point away from the surface. All double.
+//
+// Not here: polarization tracking, conductors' complex IOR (metals and mirrors use Schlick with a
+// given per-channel F0), dispersion.
 #pragma once
 
 #include <glm/glm.hpp>

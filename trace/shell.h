@@ -1,14 +1,17 @@
 // SPDX-License-Identifier: MIT
-// shell.h — EM layer geometry ("shells"): ray intersection and the cube-map lookup vector
-// (hit point minus the EM origin; cube maps need no normalization), plus fits of each shell to
-// points. Shapes: sphere, axis-aligned ellipsoid, axis-aligned box, cylinder with a vertical (y)
-// axis (finite with caps, or infinite), and the hybrid paper's quad impostor. Intersection rule for
-// closed shells: the smallest t > 0, so a ray starting inside hits the far side and a ray starting
-// outside hits the nearest front face (or misses: nullopt). `dir` need not be unit; t is in units
-// of dir. The quad always yields a point: its plane hit for t > 0, otherwise (parallel or running
-// away) the hybrid §4.2 rule: the direction's tangential component, normalized and scaled to
-// farScale * the quad's larger half extent from the quad centre (`forced`, t = +inf). Plane hits
-// outside the quad's rectangle are kept (the texture lookup clamps). All arithmetic is double.
+// shell.h — EM layer geometry ("shells"): ray intersection and the cube-map lookup vector (hit
+// point minus the EM origin; cube maps need no normalization), plus fits of each shell to points.
+// Shapes: sphere, axis-aligned ellipsoid, axis-aligned box, cylinder with a vertical (y) axis
+// (finite with caps, or infinite), and the hybrid paper's quad impostor.
+//
+// Intersection rule for closed shells: the smallest t > 0, so a ray starting inside hits the far
+// side and a ray starting outside hits the nearest front face (or misses: nullopt). `dir` need not
+// be unit; t is in units of dir. The quad always yields a point: its plane hit for t > 0, otherwise
+// (parallel or running away) the hybrid §4.2 rule: the direction's tangential component,
+// normalized and scaled to farScale * the quad's larger half extent from the quad centre
+// (`forced`, t = +inf). Plane hits outside the quad's rectangle are kept (the texture lookup
+// clamps). All arithmetic is double.
+//
 // Not here: texturing the shells (infer/), choosing a shell per layer (the caller).
 #pragma once
 
