@@ -6,22 +6,15 @@
 // Not here: anything approximate from libm (log2f, powf, ...): none is used in raster/.
 #pragma once
 
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
 
 namespace pem::raster {
 
-inline uint32_t FloatBits(float f) {
-    uint32_t u;
-    std::memcpy(&u, &f, 4);
-    return u;
-}
-inline float BitsFloat(uint32_t u) {
-    float f;
-    std::memcpy(&f, &u, 4);
-    return f;
-}
+inline uint32_t FloatBits(float f) { return std::bit_cast<uint32_t>(f); }
+inline float BitsFloat(uint32_t u) { return std::bit_cast<float>(u); }
 
 // Float lerp as llvmpipe's float path computes it: fmuladd(w, b - a, a), fused on FMA hosts.
 inline float LerpF(float w, float a, float b) { return std::fma(w, b - a, a); }

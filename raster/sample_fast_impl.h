@@ -26,7 +26,12 @@ bool FastSeamlessApplies(const Texture& t, const PipeLodState& st, const RenderO
            s.magFilter == Filter::Linear && s.mipFilter == MipFilter::Linear && !st.minMaxEqual;
 }
 
-inline float SelectF(bool c, float a, float b) { return c ? a : b; }
+// cvttps2dq without undefined behaviour and without a branch: INT32_MIN for NaN and |x| >= 2^31.
+inline int32_t TruncOrMin(float x) {
+    const bool inRange = std::fabs(x) < 2147483648.0f;
+    const int32_t i = static_cast<int32_t>(inRange ? x : 0.0f);
+    return inRange ? i : INT32_MIN;
+}
 
 void SampleFastSeamless(const PreparedFrame& frame, int textureIndex, const LaneCoords& coords,
                         unsigned live, std::array<RgbaF, kLanes>* colour) {
@@ -49,32 +54,35 @@ void SampleFastSeamless(const PreparedFrame& frame, int textureIndex, const Lane
 
     // Face, projection, rho^2 and LOD per lane.
     alignas(32) int32_t face[kLanes], level0[kLanes], level1[kLanes];
-    alignas(32) float s[kLanes], t[kLanes], frac[kLanes];
+    alignas(32) float s[kLanes], t[kLanes], frac[kLanes], rho2[kLanes];
     for (int l = 0; l < kLanes; ++l) {
         const float x = d[0][l], y = d[1][l], z = d[2][l];
         const float as = std::fabs(x), at = std::fabs(y), ar = std::fabs(z);
-        const bool isX = !(ar >= (as > at ? as : at)) && as > at;
         const bool isZ = ar >= (as > at ? as : at);
-        const bool isY = !isX && !isZ;
-        const float ma = isZ ? z : (isX ? x : y);
-        const uint32_t sign = FloatBits(ma) & 0x80000000u;
-        face[l] = (isZ ? 4 : (isX ? 0 : 2)) + static_cast<int32_t>(sign >> 31);
+        const bool isX = !isZ & (as > at);
+        const bool isY = !isX & !isZ;
+        // Branch-free selects on bit patterns (masks all-ones or zero), so the loop vectorises.
+        const uint32_t mX = 0u - static_cast<uint32_t>(isX), mY = 0u - static_cast<uint32_t>(isY);
+        const uint32_t mZ = 0u - static_cast<uint32_t>(isZ);
+        auto pick = [&](uint32_t bx, uint32_t by, uint32_t bz) {
+            return BitsFloat((bx & mX) | (by & mY) | (bz & mZ));
+        };
+        const uint32_t neg = 0x80000000u;
+        const float ma = pick(FloatBits(x), FloatBits(y), FloatBits(z));
+        const uint32_t sign = FloatBits(ma) & neg;
+        face[l] = static_cast<int32_t>((4u & mZ) | (2u & mY)) + static_cast<int32_t>(sign >> 31);
         // (sc, tc): X: (-z ^ sign, -y); Y: (x, z ^ sign); Z: (x ^ sign, -y).
-        const uint32_t sX = FloatBits(z) ^ 0x80000000u ^ sign, sZ = FloatBits(x) ^ sign;
-        const float sc = isX ? BitsFloat(sX) : (isY ? x : BitsFloat(sZ));
-        const float tc = isY ? BitsFloat(FloatBits(z) ^ sign) : BitsFloat(FloatBits(y) ^ 0x80000000u);
-        const float ddxX = dx[0][l], ddxY = dx[1][l], ddxZ = dx[2][l];
-        const float ddyX = dy[0][l], ddyY = dy[1][l], ddyZ = dy[2][l];
-        const float scdx = isX ? BitsFloat(FloatBits(ddxZ) ^ 0x80000000u ^ sign)
-                               : (isY ? ddxX : BitsFloat(FloatBits(ddxX) ^ sign));
-        const float tcdx = isY ? BitsFloat(FloatBits(ddxZ) ^ sign)
-                               : BitsFloat(FloatBits(ddxY) ^ 0x80000000u);
-        const float scdy = isX ? BitsFloat(FloatBits(ddyZ) ^ 0x80000000u ^ sign)
-                               : (isY ? ddyX : BitsFloat(FloatBits(ddyX) ^ sign));
-        const float tcdy = isY ? BitsFloat(FloatBits(ddyZ) ^ sign)
-                               : BitsFloat(FloatBits(ddyY) ^ 0x80000000u);
-        const float madx = isZ ? ddxZ : (isX ? ddxX : ddxY);
-        const float mady = isZ ? ddyZ : (isX ? ddyX : ddyY);
+        auto minorS = [&](float vx, float vz) {
+            return pick(FloatBits(vz) ^ neg ^ sign, FloatBits(vx), FloatBits(vx) ^ sign);
+        };
+        auto minorT = [&](float vy, float vz) {
+            return pick(FloatBits(vy) ^ neg, FloatBits(vz) ^ sign, FloatBits(vy) ^ neg);
+        };
+        const float sc = minorS(x, z), tc = minorT(y, z);
+        const float scdx = minorS(dx[0][l], dx[2][l]), tcdx = minorT(dx[1][l], dx[2][l]);
+        const float scdy = minorS(dy[0][l], dy[2][l]), tcdy = minorT(dy[1][l], dy[2][l]);
+        const float madx = pick(FloatBits(dx[0][l]), FloatBits(dx[1][l]), FloatBits(dx[2][l]));
+        const float mady = pick(FloatBits(dy[0][l]), FloatBits(dy[1][l]), FloatBits(dy[2][l]));
         const float ima = 1.0f / ma;
         const float imaHalf = 0.5f * ima;
         const float imaHalfPos = std::fabs(imaHalf);
@@ -82,33 +90,35 @@ void SampleFastSeamless(const PreparedFrame& frame, int textureIndex, const Lane
         const float xs = n * ((scdx - qx * sc) * imaHalf), xt = n * ((tcdx - qx * tc) * imaHalf);
         const float ys = n * ((scdy - qy * sc) * imaHalf), yt = n * ((tcdy - qy * tc) * imaHalf);
         const float rx = xs * xs + xt * xt, ry = ys * ys + yt * yt;
-        float rho = rx > ry ? rx : ry;
+        const float rho = rx > ry ? rx : ry;
         const uint32_t rb = FloatBits(rho);
-        rho = ((rb & 0x7f800000u) == 0x7f800000u) ? 0.0f : rho;  // Inf/NaN -> 0
+        const uint32_t finite = 0u - static_cast<uint32_t>((rb & 0x7f800000u) != 0x7f800000u);
+        rho2[l] = BitsFloat(rb & finite);  // Inf/NaN -> 0
         s[l] = sc * imaHalfPos + 0.5f;
         t[l] = tc * imaHalfPos + 0.5f;
-        // lambda = 0.5 * FastLog2(rho^2) (+ bias, clamps), then floor / fraction / levels.
-        const uint32_t bits = FloatBits(rho);
+    }
+    // lambda = 0.5 * FastLog2(rho^2) (+ bias, clamps), then floor / fraction / levels.
+    alignas(32) float lambda[kLanes];
+    for (int l = 0; l < kLanes; ++l) {
+        const uint32_t bits = FloatBits(rho2[l]);
         const float e = static_cast<float>(static_cast<int32_t>((bits >> 23) & 255u) - 128);
-        float lambda = (e + BitsFloat((bits & 0x007fffffu) | 0x3f800000u)) * 0.5f;
-        if (st.biasNonZero) lambda = lambda + st.lodBias;
-        if (st.applyMaxLod) lambda = lambda < st.maxLod ? lambda : st.maxLod;
-        if (st.applyMinLod) lambda = lambda > st.minLod ? lambda : st.minLod;
-        const float fl = std::floor(lambda);
-        float f = lambda - fl;
-        int32_t l0 = std::fabs(fl) < 2147483648.0f ? static_cast<int32_t>(fl) : INT32_MIN;
-        int32_t l1 = l0 + 1;
-        const bool below = l0 < 0;
-        l0 = below ? 0 : l0;
-        l1 = below ? 0 : l1;
+        lambda[l] = (e + BitsFloat((bits & 0x007fffffu) | 0x3f800000u)) * 0.5f;
+    }
+    if (st.biasNonZero)
+        for (int l = 0; l < kLanes; ++l) lambda[l] = lambda[l] + st.lodBias;
+    if (st.applyMaxLod)
+        for (int l = 0; l < kLanes; ++l) lambda[l] = lambda[l] < st.maxLod ? lambda[l] : st.maxLod;
+    if (st.applyMinLod)
+        for (int l = 0; l < kLanes; ++l) lambda[l] = lambda[l] > st.minLod ? lambda[l] : st.minLod;
+    for (int l = 0; l < kLanes; ++l) {
+        const float fl = std::floor(lambda[l]);
+        float f = lambda[l] - fl;
+        const int32_t l0Raw = TruncOrMin(fl);
+        const bool below = l0Raw < 0, above = l0Raw >= last;
+        level0[l] = below ? 0 : (above ? last : l0Raw);
+        level1[l] = below ? 0 : (above ? last : l0Raw + 1);
         f = below ? 0.0f : f;
-        const bool above = l0 >= last;
-        l0 = above ? last : l0;
-        l1 = above ? last : l1;
-        f = above ? 0.0f : f;
-        level0[l] = l0;
-        level1[l] = l1;
-        frac[l] = f;
+        frac[l] = above ? 0.0f : f;
     }
 
     bool anyLerp = false;
@@ -127,8 +137,7 @@ void SampleFastSeamless(const PreparedFrame& frame, int textureIndex, const Lane
             const float fu = std::floor(u), fv = std::floor(v);
             a[l] = u - fu;
             b[l] = v - fv;
-            const int32_t ix = std::fabs(fu) < 2147483648.0f ? static_cast<int32_t>(fu) : INT32_MIN;
-            const int32_t iy = std::fabs(fv) < 2147483648.0f ? static_cast<int32_t>(fv) : INT32_MIN;
+            const int32_t ix = TruncOrMin(fu), iy = TruncOrMin(fv);
             x0[l] = ix;
             y0[l] = iy;
             size[l] = sz;
