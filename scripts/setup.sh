@@ -8,7 +8,7 @@ packages=(
   libopenexr-dev libtinygltf-dev libembree-dev libtbb-dev
   libeigen3-dev libsuitesparse-dev
   libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri
-  tmux python3 python3-scipy openexr
+  tmux python3 python3-scipy openexr clang-format
 )
 missing=()
 for p in "${packages[@]}"; do
