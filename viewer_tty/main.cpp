@@ -115,8 +115,11 @@ int main(int argc, char** argv) {
     AddRaster(app, rasterArgs);
     try {
         app.parse(argc, argv);
-    } catch (const CLI::ParseError& e) {
+    } catch (const CLI::CallForHelp& e) {
         return app.exit(e);
+    } catch (const CLI::ParseError& e) {
+        std::fprintf(stderr, "pemref: %s (see pemref --help)\n", e.what());
+        return 2;
     }
     try {
         if (app.got_subcommand("raster")) return RunRaster(rasterArgs);
