@@ -265,6 +265,28 @@ void EdgesAndCorners(std::vector<NamedCase>* out) {
     }
 }
 
+// Blocks where some lanes touch a cube corner and others do not (llvmpipe then filters all
+// eight lanes with the weighted sum); a 2x2 cube makes corners frequent. -------------------
+void CornerBlocks(std::vector<NamedCase>* out) {
+    for (int k = 0; k < 3; ++k) {
+        Frame f = NewFrame(256, 256);
+        f.textures.push_back(Cube(2, Sampler(Filter::Linear, MipFilter::None, Filter::Linear),
+                                  7000 + static_cast<uint64_t>(k)));
+        Pass p;
+        Rng rng{71 + static_cast<uint64_t>(k)};
+        for (int t = 0; t < 64; ++t)
+            for (int v = 0; v < 3; ++v) {
+                const glm::vec4 pos(rng.Uniform(-1.5f, 1.5f), rng.Uniform(-1.5f, 1.5f), 0, 1);
+                const glm::vec3 d(rng.Uniform(-1, 1), rng.Uniform(-1, 1), rng.Uniform(-1, 1));
+                const glm::vec4 col(rng.Uniform(0.2f, 1), rng.Uniform(0.2f, 1), rng.Uniform(0.2f, 1),
+                                    1.0f);
+                p.vertices.push_back(V(pos, d, col));
+            }
+        f.passes.push_back(p);
+        out->push_back({"corner_blocks_" + std::to_string(k), f});
+    }
+}
+
 // Minification (directions sweep the whole cube across the screen) and magnification. --------
 void MinMag(std::vector<NamedCase>* out) {
     const glm::vec3 sweep[4] = {{-3, -2, 1}, {3, -2, 1}, {2, 3, -1}, {-2, 3, -1}};
@@ -570,6 +592,7 @@ std::vector<NamedCase> ConformanceCases() {
     std::vector<NamedCase> out;
     Spheres(&out);
     EdgesAndCorners(&out);
+    CornerBlocks(&out);
     MinMag(&out);
     Textures2D(&out);
     LodControls(&out);
