@@ -16,7 +16,7 @@ struct TriangleHit {
 };
 
 std::optional<TriangleHit> IntersectTriangle(const Object& obj, int prim, const glm::dvec3& o,
-                                     const glm::dvec3& d, double tnear, double tfar) {
+                                             const glm::dvec3& d, double tnear, double tfar) {
     const glm::uvec3 tri = obj.triangles[static_cast<size_t>(prim)];
     const glm::dvec3 v0(obj.positions[tri.x]), v1(obj.positions[tri.y]), v2(obj.positions[tri.z]);
     // Step 1: determinant; zero means the ray is parallel to the plane (or the triangle is flat).
@@ -52,7 +52,8 @@ void ForEachHit(const Scene& scene, const raster::Ray& ray, float tnear, float t
     for (size_t i = 0; i < scene.objects.size(); ++i) {
         const Object& obj = scene.objects[i];
         for (size_t k = 0; k < obj.triangles.size(); ++k) {
-            std::optional<TriangleHit> h = IntersectTriangle(obj, static_cast<int>(k), o, d, tnear, tfar);
+            std::optional<TriangleHit> h =
+                IntersectTriangle(obj, static_cast<int>(k), o, d, tnear, tfar);
             if (!h) continue;
             h->hit.object = static_cast<int>(i);
             if (!fn(*h)) return;

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <iterator>
 #include <mutex>
 #include <stdexcept>
 
@@ -67,6 +68,11 @@ std::string EmbreeConfig(const EmbreeOptions& options) {
     if (options.isa == "auto") {
         if (CpuHasAvx2()) add("isa=avx2");
     } else if (!options.isa.empty()) {
+        // Embree silently ignores unknown names, so they are checked here.
+        static const char* const kKnown[] = {"sse2", "sse4.2", "avx", "avx2", "avx512"};
+        if (std::find(std::begin(kKnown), std::end(kKnown), options.isa) == std::end(kKnown))
+            throw std::runtime_error("Embree: unknown isa \"" + options.isa +
+                                     "\" (expected auto, sse2, sse4.2, avx, avx2 or avx512)");
         add("isa=" + options.isa);
     }
     return config;
@@ -77,11 +83,14 @@ EmbreeDevice::EmbreeDevice(const EmbreeOptions& options) : state_(std::make_shar
     state_->device = rtcNewDevice(state_->config.c_str());
     if (!state_->device)
         throw std::runtime_error("Embree: rtcNewDevice(\"" + state_->config + "\") failed (code " +
-                                 std::to_string(static_cast<int>(rtcGetDeviceError(nullptr))) + ")");
+                                 std::to_string(static_cast<int>(rtcGetDeviceError(nullptr))) +
+                                 ")");
     rtcSetDeviceErrorFunction(state_->device, OnEmbreeError, state_.get());
 }
 
-const std::string& EmbreeDevice::config() const { return state_->config; }
+const std::string& EmbreeDevice::config() const {
+    return state_->config;
+}
 
 // EmbreeScene ----------------------------------------------------------------------------------
 
@@ -99,19 +108,21 @@ namespace {
 void AddObject(RTCDevice device, RTCScene scene, const Object& obj, unsigned id) {
     RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
     if (!geom) return;  // the error callback has the reason
-    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                                          3 * sizeof(float), obj.positions.size()));
-    auto* t = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                                             3 * sizeof(unsigned), obj.triangles.size()));
+    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0,
+                                                          RTC_FORMAT_FLOAT3, 3 * sizeof(float),
+                                                          obj.positions.size()));
+    auto* t = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0,
+                                                             RTC_FORMAT_UINT3, 3 * sizeof(unsigned),
+                                                             obj.triangles.size()));
     if (v && t) {
         for (size_t i = 0; i < obj.positions.size(); ++i)
             for (size_t k = 0; k < 3; ++k) v[3 * i + k] = obj.positions[i][static_cast<int>(k)];
         for (size_t i = 0; i < obj.triangles.size(); ++i)
             for (size_t k = 0; k < 3; ++k) t[3 * i + k] = obj.triangles[i][static_cast<int>(k)];
     }
-    rtcCommitGeometry(geom);                   // "you must commit geometry" before attaching
-    rtcAttachGeometryByID(scene, geom, id);    // geomID == object index
-    rtcReleaseGeometry(geom);                  // the scene holds its own reference now
+    rtcCommitGeometry(geom);                 // "you must commit geometry" before attaching
+    rtcAttachGeometryByID(scene, geom, id);  // geomID == object index
+    rtcReleaseGeometry(geom);                // the scene holds its own reference now
 }
 
 RTCRayHit MakeRayHit(const raster::Ray& ray, float tnear, float tfar) {
@@ -151,21 +162,24 @@ void CollectFilter(const RTCFilterFunctionNArguments* args) {
         if (args->valid[i] == 0) continue;
         const glm::vec3 ng(RTCHitN_Ng_x(args->hit, args->N, i), RTCHitN_Ng_y(args->hit, args->N, i),
                            RTCHitN_Ng_z(args->hit, args->N, i));
-        cc->hits->push_back(ToHit(RTCRayN_tfar(args->ray, args->N, i), RTCHitN_geomID(args->hit, args->N, i),
-                                  RTCHitN_primID(args->hit, args->N, i), RTCHitN_u(args->hit, args->N, i),
-                                  RTCHitN_v(args->hit, args->N, i), ng));
+        cc->hits->push_back(
+            ToHit(RTCRayN_tfar(args->ray, args->N, i), RTCHitN_geomID(args->hit, args->N, i),
+                  RTCHitN_primID(args->hit, args->N, i), RTCHitN_u(args->hit, args->N, i),
+                  RTCHitN_v(args->hit, args->N, i), ng));
         args->valid[i] = 0;  // reject: traversal continues with the original tfar
     }
 }
 
 }  // namespace
 
-EmbreeScene::EmbreeScene(const EmbreeDevice& device, const Scene& scene) : impl_(std::make_unique<Impl>()) {
+EmbreeScene::EmbreeScene(const EmbreeDevice& device, const Scene& scene)
+    : impl_(std::make_unique<Impl>()) {
     impl_->device = device.state();
     RTCDevice dev = impl_->device->device;
     impl_->scene = rtcNewScene(dev);
     impl_->device->Check("rtcNewScene");
-    for (size_t i = 0; i < scene.objects.size(); ++i) AddObject(dev, impl_->scene, scene.objects[i], static_cast<unsigned>(i));
+    for (size_t i = 0; i < scene.objects.size(); ++i)
+        AddObject(dev, impl_->scene, scene.objects[i], static_cast<unsigned>(i));
     impl_->device->Check("geometry setup");
     rtcSetSceneFlags(impl_->scene, RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);
     rtcSetSceneBuildQuality(impl_->scene, RTC_BUILD_QUALITY_MEDIUM);
@@ -208,10 +222,14 @@ std::vector<Hit> EmbreeScene::IntersectAll(const raster::Ray& ray, float tnear, 
     impl_->device->Check("rtcIntersect1 (all hits)");
     // Deterministic order; drop repeats (a primitive referenced by several BVH leaves).
     std::sort(hits.begin(), hits.end(), [](const Hit& a, const Hit& b) {
-        return a.t != b.t ? a.t < b.t : a.object != b.object ? a.object < b.object : a.prim < b.prim;
+        return a.t != b.t             ? a.t < b.t
+               : a.object != b.object ? a.object < b.object
+                                      : a.prim < b.prim;
     });
     hits.erase(std::unique(hits.begin(), hits.end(),
-                           [](const Hit& a, const Hit& b) { return a.object == b.object && a.prim == b.prim; }),
+                           [](const Hit& a, const Hit& b) {
+                               return a.object == b.object && a.prim == b.prim;
+                           }),
                hits.end());
     return hits;
 }

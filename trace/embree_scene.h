@@ -30,28 +30,30 @@
 namespace pem::trace {
 
 struct EmbreeOptions {
-    int threads = 0;           // 0: Embree's default (all hardware threads)
-    std::string isa = "auto";  // "auto", "" (Embree chooses), or "sse2", "sse4.2", "avx", "avx2", "avx512"
+    int threads = 0;  // 0: Embree's default (all hardware threads)
+    std::string isa =
+        "auto";  // "auto", "" (Embree chooses), or "sse2", "sse4.2", "avx", "avx2", "avx512"
     bool operator==(const EmbreeOptions&) const = default;
 };
 
-// The rtcNewDevice config string for the options, e.g. "threads=2,isa=avx2".
+// The rtcNewDevice config string for the options, e.g. "threads=2,isa=avx2". An unknown isa
+// name throws std::runtime_error (Embree itself would ignore it silently).
 std::string EmbreeConfig(const EmbreeOptions& options);
 
 class EmbreeDevice {
-public:
+  public:
     explicit EmbreeDevice(const EmbreeOptions& options = {});
     const std::string& config() const;
 
     struct State;  // device handle + error slot (embree_scene.cpp)
     const std::shared_ptr<State>& state() const { return state_; }
 
-private:
+  private:
     std::shared_ptr<State> state_;
 };
 
 class EmbreeScene {
-public:
+  public:
     // Builds the BVH (keeps the device alive; the Scene may be destroyed afterwards).
     EmbreeScene(const EmbreeDevice& device, const Scene& scene);
     ~EmbreeScene();
@@ -76,7 +78,7 @@ public:
 
     static constexpr float kInfinity = std::numeric_limits<float>::infinity();
 
-private:
+  private:
     struct Impl;
     std::unique_ptr<Impl> impl_;
 };

@@ -42,8 +42,9 @@ void ReadPixels(const std::string& path, Environment* env, Imath::Box2i* dataWin
         const float c[3] = {px[i].r, px[i].g, px[i].b};
         for (int k = 0; k < 3; ++k) {
             if (!std::isfinite(c[k]))
-                throw pem::InputError(path, "non-finite texel at (" + std::to_string(i % static_cast<size_t>(w)) +
-                                                ", " + std::to_string(i / static_cast<size_t>(w)) + ")");
+                throw pem::InputError(path, "non-finite texel at (" +
+                                                std::to_string(i % static_cast<size_t>(w)) + ", " +
+                                                std::to_string(i / static_cast<size_t>(w)) + ")");
             env->rgb[3 * i + static_cast<size_t>(k)] = std::max(c[k], 0.0f);
         }
     }
@@ -51,7 +52,8 @@ void ReadPixels(const std::string& path, Environment* env, Imath::Box2i* dataWin
 }
 
 glm::vec3 Texel(const Environment& env, int x, int y) {
-    const size_t at = 3 * (static_cast<size_t>(y) * static_cast<size_t>(env.width) + static_cast<size_t>(x));
+    const size_t at =
+        3 * (static_cast<size_t>(y) * static_cast<size_t>(env.width) + static_cast<size_t>(x));
     return {env.rgb[at], env.rgb[at + 1], env.rgb[at + 2]};
 }
 
@@ -63,13 +65,16 @@ glm::vec3 Bilerp(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c, con
 glm::vec3 LatLongLookup(const Environment& env, const glm::vec3& d) {
     // Step 1: direction → continuous pixel position (pixel-edge form, data/README.md).
     const double pi = std::numbers::pi;
-    const double u = 0.5 - std::atan2(static_cast<double>(d.x), static_cast<double>(d.z)) / (2.0 * pi);
+    const double u =
+        0.5 - std::atan2(static_cast<double>(d.x), static_cast<double>(d.z)) / (2.0 * pi);
     const double v = 0.5 - std::asin(std::clamp(static_cast<double>(d.y), -1.0, 1.0)) / pi;
     const double x = u * env.width - 0.5, y = v * env.height - 0.5;
     // Step 2: bilinear taps, columns wrap, rows clamp.
     const double x0 = std::floor(x), y0 = std::floor(y);
     const float fx = static_cast<float>(x - x0), fy = static_cast<float>(y - y0);
-    auto col = [&](double i) { return static_cast<int>((static_cast<long long>(i) % env.width + env.width) % env.width); };
+    auto col = [&](double i) {
+        return static_cast<int>((static_cast<long long>(i) % env.width + env.width) % env.width);
+    };
     auto row = [&](double j) { return std::clamp(static_cast<int>(j), 0, env.height - 1); };
     return Bilerp(Texel(env, col(x0), row(y0)), Texel(env, col(x0 + 1), row(y0)),
                   Texel(env, col(x0), row(y0 + 1)), Texel(env, col(x0 + 1), row(y0 + 1)), fx, fy);
@@ -90,12 +95,14 @@ glm::vec3 CubeLookup(const Environment& env, const glm::vec3& d) {
         return Texel(env, std::clamp(static_cast<int>(std::lround(p.x)), 0, env.width - 1),
                      std::clamp(static_cast<int>(std::lround(p.y)), 0, env.height - 1));
     };
-    return Bilerp(tap(x0, y0), tap(x0 + 1, y0), tap(x0, y0 + 1), tap(x0 + 1, y0 + 1), pif.x - x0, pif.y - y0);
+    return Bilerp(tap(x0, y0), tap(x0 + 1, y0), tap(x0, y0 + 1), tap(x0 + 1, y0 + 1), pif.x - x0,
+                  pif.y - y0);
 }
 
 }  // namespace
 
-Environment LoadEnvironment(const std::string& exrPath, Environment::Mapping mapping, float intensity) {
+Environment LoadEnvironment(const std::string& exrPath, Environment::Mapping mapping,
+                            float intensity) {
     std::error_code ec;
     if (!std::filesystem::is_regular_file(exrPath, ec))
         throw pem::InputError(exrPath, "cannot open file (missing or not a regular file)");
@@ -113,7 +120,8 @@ Environment LoadEnvironment(const std::string& exrPath, Environment::Mapping map
     }
     if (mapping == Environment::Mapping::Cube && env.height != 6 * env.width)
         throw pem::InputError(exrPath, "cube map must be N wide and 6N tall, got " +
-                                           std::to_string(env.width) + "x" + std::to_string(env.height));
+                                           std::to_string(env.width) + "x" +
+                                           std::to_string(env.height));
     return env;
 }
 
@@ -122,7 +130,8 @@ glm::vec3 EnvRadiance(const Environment& env, const glm::vec3& dir) {
     const float len = glm::length(dir);
     if (!(len > 0.0f) || !std::isfinite(len)) return glm::vec3(0.0f);
     const glm::vec3 d = dir / len;
-    const glm::vec3 c = env.mapping == Environment::Mapping::LatLong ? LatLongLookup(env, d) : CubeLookup(env, d);
+    const glm::vec3 c =
+        env.mapping == Environment::Mapping::LatLong ? LatLongLookup(env, d) : CubeLookup(env, d);
     return c * env.intensity;
 }
 

@@ -25,7 +25,7 @@ namespace pem::trace {
 struct Environment {
     enum class Mapping { None, LatLong, Cube };
     Mapping mapping = Mapping::None;
-    std::string path;  // the EXR file (for messages)
+    std::string path;           // the EXR file (for messages)
     int width = 0, height = 0;  // of the whole image (cube: N by 6N)
     std::vector<float> rgb;     // width · height · 3, rows top-down
     float intensity = 1.0f;

@@ -11,7 +11,9 @@
 
 namespace pem::trace::gltf {
 
-void Fail(const Context& ctx, const std::string& cause) { throw pem::InputError(ctx.path, cause); }
+void Fail(const Context& ctx, const std::string& cause) {
+    throw pem::InputError(ctx.path, cause);
+}
 
 void Note(const Context& ctx, const std::string& note) {
     if (ctx.notes) ctx.notes->push_back(note);
@@ -68,23 +70,32 @@ namespace {
 int ComponentBytes(int componentType) {
     switch (componentType) {
         case TINYGLTF_COMPONENT_TYPE_BYTE:
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return 1;
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+            return 1;
         case TINYGLTF_COMPONENT_TYPE_SHORT:
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return 2;
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
+            return 2;
         case TINYGLTF_COMPONENT_TYPE_INT:
         case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
-        case TINYGLTF_COMPONENT_TYPE_FLOAT: return 4;
-        default: return 0;
+        case TINYGLTF_COMPONENT_TYPE_FLOAT:
+            return 4;
+        default:
+            return 0;
     }
 }
 
 int TypeComponents(int type) {
     switch (type) {
-        case TINYGLTF_TYPE_SCALAR: return 1;
-        case TINYGLTF_TYPE_VEC2: return 2;
-        case TINYGLTF_TYPE_VEC3: return 3;
-        case TINYGLTF_TYPE_VEC4: return 4;
-        default: return 0;
+        case TINYGLTF_TYPE_SCALAR:
+            return 1;
+        case TINYGLTF_TYPE_VEC2:
+            return 2;
+        case TINYGLTF_TYPE_VEC3:
+            return 3;
+        case TINYGLTF_TYPE_VEC4:
+            return 4;
+        default:
+            return 0;
     }
 }
 
@@ -97,7 +108,9 @@ struct View {
 };
 
 // a + b <= limit without overflow.
-bool FitsSum(size_t a, size_t b, size_t limit) { return a <= limit && b <= limit - a; }
+bool FitsSum(size_t a, size_t b, size_t limit) {
+    return a <= limit && b <= limit - a;
+}
 
 const tinygltf::BufferView& CheckedBufferView(const Context& ctx, const tinygltf::Accessor& acc,
                                               const std::string& where) {
@@ -158,9 +171,12 @@ T Load(const unsigned char* p) {
 float ComponentAsFloat(const View& v, size_t i, int c) {
     const unsigned char* p = v.base + i * v.stride;
     switch (v.componentType) {
-        case TINYGLTF_COMPONENT_TYPE_FLOAT: return Load<float>(p + 4 * c);
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return static_cast<float>(p[c]) / 255.0f;
-        default: return static_cast<float>(Load<uint16_t>(p + 2 * c)) / 65535.0f;
+        case TINYGLTF_COMPONENT_TYPE_FLOAT:
+            return Load<float>(p + 4 * c);
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+            return static_cast<float>(p[c]) / 255.0f;
+        default:
+            return static_cast<float>(Load<uint16_t>(p + 2 * c)) / 65535.0f;
     }
 }
 
@@ -206,10 +222,17 @@ std::vector<uint32_t> ReadIndices(const Context& ctx, int accessor, const std::s
     for (size_t i = 0; i < v.count; ++i) {
         const unsigned char* p = v.base + i * v.stride;
         switch (v.componentType) {
-            case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: out[i] = p[0]; break;
-            case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: out[i] = Load<uint16_t>(p); break;
-            case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: out[i] = Load<uint32_t>(p); break;
-            default: Fail(ctx, where + ": indices must be unsigned byte, short or int");
+            case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+                out[i] = p[0];
+                break;
+            case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
+                out[i] = Load<uint16_t>(p);
+                break;
+            case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+                out[i] = Load<uint32_t>(p);
+                break;
+            default:
+                Fail(ctx, where + ": indices must be unsigned byte, short or int");
         }
     }
     return out;

@@ -25,9 +25,9 @@ Texture2D ConvertImage(const Context& ctx, int textureIndex, const std::string& 
         Fail(ctx, where + ": texture " + std::to_string(textureIndex) + " has no valid image");
     const tinygltf::Image& img = m.images[static_cast<size_t>(source)];
     const int bytes = img.bits == 16 ? 2 : 1;
-    const size_t expected = static_cast<size_t>(std::max(img.width, 0)) *
-                            static_cast<size_t>(std::max(img.height, 0)) *
-                            static_cast<size_t>(std::max(img.component, 0)) * static_cast<size_t>(bytes);
+    const size_t expected =
+        static_cast<size_t>(std::max(img.width, 0)) * static_cast<size_t>(std::max(img.height, 0)) *
+        static_cast<size_t>(std::max(img.component, 0)) * static_cast<size_t>(bytes);
     if (img.width <= 0 || img.height <= 0 || img.component < 1 || img.component > 4 ||
         (img.bits != 8 && img.bits != 16) || img.image.size() != expected)
         Fail(ctx, where + ": image " + std::to_string(source) + " was not decoded (unsupported)");
@@ -44,9 +44,11 @@ Texture2D ConvertImage(const Context& ctx, int textureIndex, const std::string& 
             const int ch = img.component >= 3 ? c : 0;
             const size_t at = (i * static_cast<size_t>(img.component) + static_cast<size_t>(ch)) *
                               static_cast<size_t>(bytes);
-            const unsigned value = bytes == 2 ? unsigned(img.image[at]) | unsigned(img.image[at + 1]) << 8
-                                              : unsigned(img.image[at]);
-            tex.rgb[3 * i + static_cast<size_t>(c)] = SrgbToLinear(static_cast<float>(value) * scale);
+            const unsigned value = bytes == 2
+                                       ? unsigned(img.image[at]) | unsigned(img.image[at + 1]) << 8
+                                       : unsigned(img.image[at]);
+            tex.rgb[3 * i + static_cast<size_t>(c)] =
+                SrgbToLinear(static_cast<float>(value) * scale);
         }
     return tex;
 }
@@ -57,8 +59,9 @@ int TextureSlot(const Context& ctx, const tinygltf::TextureInfo& info, const std
     if (info.index < 0) return -1;
     if (Extension(info.extensions, "KHR_texture_transform"))
         Note(ctx, where + ": KHR_texture_transform ignored");
-    if (info.texCoord != 0) Note(ctx, where + ": texCoord " + std::to_string(info.texCoord) +
-                                          " not supported, TEXCOORD_0 used");
+    if (info.texCoord != 0)
+        Note(ctx, where + ": texCoord " + std::to_string(info.texCoord) +
+                      " not supported, TEXCOORD_0 used");
     auto it = cache->find(info.index);
     if (it != cache->end()) return it->second;
     scene->textures.push_back(ConvertImage(ctx, info.index, where));
@@ -69,9 +72,11 @@ int TextureSlot(const Context& ctx, const tinygltf::TextureInfo& info, const std
 
 glm::vec3 Factor3(const Context& ctx, const std::vector<double>& f, size_t expected,
                   const std::string& where) {
-    if (f.size() != expected) Fail(ctx, where + ": expected " + std::to_string(expected) + " numbers");
+    if (f.size() != expected)
+        Fail(ctx, where + ": expected " + std::to_string(expected) + " numbers");
     for (double x : f)
-        if (!std::isfinite(x) || x < 0.0) Fail(ctx, where + ": expected non-negative finite numbers");
+        if (!std::isfinite(x) || x < 0.0)
+            Fail(ctx, where + ": expected non-negative finite numbers");
     return glm::vec3(static_cast<float>(f[0]), static_cast<float>(f[1]), static_cast<float>(f[2]));
 }
 
@@ -80,7 +85,8 @@ void ApplyGlass(const Context& ctx, const tinygltf::Material& src, const std::st
                 Material* mat) {
     const tinygltf::Value* tr = Extension(src.extensions, "KHR_materials_transmission");
     const double transmission =
-        tr ? NumberOr(ctx, *tr, "transmissionFactor", 0.0, where + ".KHR_materials_transmission") : 0.0;
+        tr ? NumberOr(ctx, *tr, "transmissionFactor", 0.0, where + ".KHR_materials_transmission")
+           : 0.0;
     if (transmission <= 0.0) return;
     if (transmission > 1.0) Fail(ctx, where + ": transmissionFactor > 1");
     mat->kind = MaterialKind::Glass;
@@ -98,28 +104,32 @@ void ApplyGlass(const Context& ctx, const tinygltf::Material& src, const std::st
         for (int k = 0; k < 3; ++k) {
             if (c[k] < 0.0 || c[k] > 1.0) Fail(ctx, w + ".attenuationColor: must be in [0, 1]");
             // σ = −ln(c)/d; c = 0 would be infinitely dark, so it is clamped to 1e-6.
-            mat->absorption[k] = std::isinf(d) ? 0.0f
-                                               : static_cast<float>(-std::log(std::max(c[k], 1e-6)) / d);
+            mat->absorption[k] =
+                std::isinf(d) ? 0.0f : static_cast<float>(-std::log(std::max(c[k], 1e-6)) / d);
         }
     }
 }
 
-Material ConvertMaterial(const Context& ctx, const tinygltf::Material& src, const std::string& where,
-                         std::map<int, int>* cache, Scene* scene) {
+Material ConvertMaterial(const Context& ctx, const tinygltf::Material& src,
+                         const std::string& where, std::map<int, int>* cache, Scene* scene) {
     Material mat;
     mat.name = src.name;
     const auto& pbr = src.pbrMetallicRoughness;
     // Step 1: base colour and emission (+ textures).
     mat.baseColor = Factor3(ctx, pbr.baseColorFactor, 4, where + ".baseColorFactor");
-    mat.baseColorTexture = TextureSlot(ctx, pbr.baseColorTexture, where + ".baseColorTexture", cache, scene);
-    mat.emission = Factor3(ctx, src.emissiveFactor.empty() ? std::vector<double>{0, 0, 0} : src.emissiveFactor,
-                           3, where + ".emissiveFactor");
+    mat.baseColorTexture =
+        TextureSlot(ctx, pbr.baseColorTexture, where + ".baseColorTexture", cache, scene);
+    mat.emission =
+        Factor3(ctx, src.emissiveFactor.empty() ? std::vector<double>{0, 0, 0} : src.emissiveFactor,
+                3, where + ".emissiveFactor");
     if (const tinygltf::Value* es = Extension(src.extensions, "KHR_materials_emissive_strength")) {
-        const double s = NumberOr(ctx, *es, "emissiveStrength", 1.0, where + ".KHR_materials_emissive_strength");
+        const double s =
+            NumberOr(ctx, *es, "emissiveStrength", 1.0, where + ".KHR_materials_emissive_strength");
         if (s < 0.0) Fail(ctx, where + ".emissiveStrength: must be >= 0");
         mat.emission *= static_cast<float>(s);
     }
-    mat.emissiveTexture = TextureSlot(ctx, src.emissiveTexture, where + ".emissiveTexture", cache, scene);
+    mat.emissiveTexture =
+        TextureSlot(ctx, src.emissiveTexture, where + ".emissiveTexture", cache, scene);
     // Step 2: the kind.
     ApplyGlass(ctx, src, where, &mat);
     if (mat.kind == MaterialKind::Glass) return mat;
@@ -127,7 +137,8 @@ Material ConvertMaterial(const Context& ctx, const tinygltf::Material& src, cons
         mat.kind = MaterialKind::Mirror;
     } else if (pbr.metallicFactor > 0.0) {
         Note(ctx, where + " (" + src.name + "): metallic " + std::to_string(pbr.metallicFactor) +
-                      ", roughness " + std::to_string(pbr.roughnessFactor) + " approximated as diffuse");
+                      ", roughness " + std::to_string(pbr.roughnessFactor) +
+                      " approximated as diffuse");
     }
     return mat;
 }
@@ -137,8 +148,8 @@ Material ConvertMaterial(const Context& ctx, const tinygltf::Material& src, cons
 void ConvertMaterials(const Context& ctx, Scene* scene) {
     std::map<int, int> cache;  // glTF texture index → Scene::textures index
     for (size_t i = 0; i < ctx.model.materials.size(); ++i)
-        scene->materials.push_back(ConvertMaterial(ctx, ctx.model.materials[i],
-                                                   "materials[" + std::to_string(i) + "]", &cache, scene));
+        scene->materials.push_back(ConvertMaterial(
+            ctx, ctx.model.materials[i], "materials[" + std::to_string(i) + "]", &cache, scene));
     Material fallback;  // for primitives without a material (glTF's default is white)
     fallback.name = "default";
     scene->materials.push_back(fallback);

@@ -50,7 +50,8 @@ RawPrimitive ReadPrimitive(const Context& ctx, const tinygltf::Primitive& prim,
     if (attr("NORMAL") >= 0) raw.normals = ReadVec3(ctx, attr("NORMAL"), where + ".NORMAL");
     if (attr("TEXCOORD_0") >= 0)
         raw.uvs = ReadTexcoord(ctx, attr("TEXCOORD_0"), where + ".TEXCOORD_0");
-    if ((!raw.normals.empty() && raw.normals.size() != n) || (!raw.uvs.empty() && raw.uvs.size() != n))
+    if ((!raw.normals.empty() && raw.normals.size() != n) ||
+        (!raw.uvs.empty() && raw.uvs.size() != n))
         Fail(ctx, where + ": attribute counts differ from POSITION's " + std::to_string(n));
     std::vector<uint32_t> idx;
     if (prim.indices >= 0) {
@@ -147,7 +148,8 @@ bool BuildObject(const Context& ctx, const RawPrimitive& raw, const glm::dmat4& 
     } else {
         RawPrimitive kept = raw;
         kept.triangles = obj->triangles;
-        const glm::dmat3 nm = det != 0.0 ? glm::inverseTranspose(glm::dmat3(world)) : glm::dmat3(0.0);
+        const glm::dmat3 nm =
+            det != 0.0 ? glm::inverseTranspose(glm::dmat3(world)) : glm::dmat3(0.0);
         obj->normals = WorldNormals(kept, nm, det != 0.0, obj->positions);
         obj->uvs = raw.uvs;
     }
@@ -187,10 +189,11 @@ void AppendMeshObjects(const Context& ctx, int nodeIndex, int meshIndex, const g
         obj.node = nodeIndex;
         obj.mesh = meshIndex;
         obj.primitive = static_cast<int>(p);
-        obj.lensRole = StringOr(ctx, node.extras, "pemref_role", "", nodeWhere + ".extras") == "lens";
+        obj.lensRole =
+            StringOr(ctx, node.extras, "pemref_role", "", nodeWhere + ".extras") == "lens";
         // The default material is the last entry of Scene::materials (ConvertMaterials).
-        obj.material = prim.material >= 0 ? prim.material
-                                           : static_cast<int>(scene->materials.size()) - 1;
+        obj.material =
+            prim.material >= 0 ? prim.material : static_cast<int>(scene->materials.size()) - 1;
         if (BuildObject(ctx, ReadPrimitive(ctx, prim, where), world, where, &obj,
                         &scene->droppedDegenerate))
             scene->objects.push_back(std::move(obj));

@@ -8,9 +8,12 @@ namespace pem::trace {
 
 const char* MaterialKindName(MaterialKind kind) {
     switch (kind) {
-        case MaterialKind::Diffuse: return "diffuse";
-        case MaterialKind::Mirror: return "mirror";
-        case MaterialKind::Glass: return "glass";
+        case MaterialKind::Diffuse:
+            return "diffuse";
+        case MaterialKind::Mirror:
+            return "mirror";
+        case MaterialKind::Glass:
+            return "glass";
     }
     return "?";
 }
@@ -40,7 +43,8 @@ glm::vec3 SampleTexture(const Texture2D& texture, glm::vec2 uv) {
     const float fx = x - x0, fy = y - y0;
     const int ix = static_cast<int>(x0), iy = static_cast<int>(y0);
     const glm::vec3 top = (1.0f - fx) * Texel(texture, ix, iy) + fx * Texel(texture, ix + 1, iy);
-    const glm::vec3 bottom = (1.0f - fx) * Texel(texture, ix, iy + 1) + fx * Texel(texture, ix + 1, iy + 1);
+    const glm::vec3 bottom =
+        (1.0f - fx) * Texel(texture, ix, iy + 1) + fx * Texel(texture, ix + 1, iy + 1);
     return (1.0f - fy) * top + fy * bottom;
 }
 

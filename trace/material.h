@@ -35,13 +35,13 @@ struct Texture2D {
 struct Material {
     std::string name;
     MaterialKind kind = MaterialKind::Diffuse;
-    glm::vec3 baseColor{1.0f};      // diffuse albedo / mirror F0 / glass surface tint (unused)
-    int baseColorTexture = -1;      // Scene::textures index, multiplies baseColor (diffuse only)
-    glm::vec3 emission{0.0f};       // radiance scale: emissiveFactor × emissive strength
-    int emissiveTexture = -1;       // Scene::textures index, multiplies emission
-    float transmission = 0.0f;      // KHR_materials_transmission factor (glass only)
-    float ior = 1.5f;               // glass only
-    glm::vec3 absorption{0.0f};     // σ per world unit, per channel (glass only)
+    glm::vec3 baseColor{1.0f};   // diffuse albedo / mirror F0 / glass surface tint (unused)
+    int baseColorTexture = -1;   // Scene::textures index, multiplies baseColor (diffuse only)
+    glm::vec3 emission{0.0f};    // radiance scale: emissiveFactor × emissive strength
+    int emissiveTexture = -1;    // Scene::textures index, multiplies emission
+    float transmission = 0.0f;   // KHR_materials_transmission factor (glass only)
+    float ior = 1.5f;            // glass only
+    glm::vec3 absorption{0.0f};  // σ per world unit, per channel (glass only)
     bool operator==(const Material&) const = default;
 
     bool IsLens() const { return kind != MaterialKind::Diffuse; }  // mirror or glass

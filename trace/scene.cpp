@@ -27,9 +27,8 @@ using gltf::Fail;
 const std::set<std::string> kSupportedExtensions = {
     "KHR_materials_transmission", "KHR_materials_ior", "KHR_materials_volume",
     "KHR_materials_emissive_strength", "KHR_lights_punctual"};
-const std::set<std::string> kCompressionExtensions = {"KHR_draco_mesh_compression",
-                                                      "EXT_meshopt_compression",
-                                                      "KHR_meshopt_compression"};
+const std::set<std::string> kCompressionExtensions = {
+    "KHR_draco_mesh_compression", "EXT_meshopt_compression", "KHR_meshopt_compression"};
 
 std::string ReadFileBytes(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
@@ -57,8 +56,11 @@ tinygltf::Model ParseGltf(const std::string& path) {
                         : loader.LoadASCIIFromFile(&model, &err, &warn, path);
     if (!ok || !err.empty() || !warn.empty()) {
         for (const std::string& ext : kCompressionExtensions)
-            if (bytes.find(ext) != std::string::npos) throw pem::InputError(path, CompressionHint(ext));
-        std::string cause = !err.empty() ? err : !warn.empty() ? warn : "tinygltf failed to parse the file";
+            if (bytes.find(ext) != std::string::npos)
+                throw pem::InputError(path, CompressionHint(ext));
+        std::string cause = !err.empty()    ? err
+                            : !warn.empty() ? warn
+                                            : "tinygltf failed to parse the file";
         while (!cause.empty() && (cause.back() == '\n' || cause.back() == ' ')) cause.pop_back();
         throw pem::InputError(path, "glTF parse error: " + cause);
     }
@@ -80,7 +82,8 @@ glm::dmat4 LocalMatrix(const Context& ctx, const tinygltf::Node& node, const std
     auto finite = [&](const std::vector<double>& v, size_t n, const char* what) {
         if (!v.empty() && v.size() != n) Fail(ctx, where + "." + what + ": wrong number of values");
         for (double x : v)
-            if (!std::isfinite(x)) Fail(ctx, where + "." + what + ": non-finite value (NaN or Inf)");
+            if (!std::isfinite(x))
+                Fail(ctx, where + "." + what + ": non-finite value (NaN or Inf)");
     };
     finite(node.matrix, 16, "matrix");
     finite(node.translation, 3, "translation");
@@ -101,7 +104,8 @@ glm::dmat4 LocalMatrix(const Context& ctx, const tinygltf::Node& node, const std
         if (!(len > 0.0)) Fail(ctx, where + ".rotation: zero quaternion");
         r = glm::mat4_cast(q / len);
     }
-    if (!node.scale.empty()) s = glm::scale(glm::dmat4(1.0), glm::dvec3(node.scale[0], node.scale[1], node.scale[2]));
+    if (!node.scale.empty())
+        s = glm::scale(glm::dmat4(1.0), glm::dvec3(node.scale[0], node.scale[1], node.scale[2]));
     return t * r * s;
 }
 
@@ -109,14 +113,16 @@ SceneCamera MakeCamera(const Context& ctx, const tinygltf::Node& node, const glm
                        const std::string& where) {
     const tinygltf::Camera& cam = ctx.model.cameras[static_cast<size_t>(node.camera)];
     const auto& p = cam.perspective;
-    if (!(p.yfov > 0.0 && p.yfov < std::numbers::pi)) Fail(ctx, where + ": camera yfov must be in (0, pi)");
+    if (!(p.yfov > 0.0 && p.yfov < std::numbers::pi))
+        Fail(ctx, where + ": camera yfov must be in (0, pi)");
     if (!(p.aspectRatio >= 0.0) || !std::isfinite(p.aspectRatio) || p.aspectRatio > 100.0)
         Fail(ctx, where + ": camera aspectRatio invalid");
     SceneCamera out;
     out.name = node.name.empty() ? cam.name : node.name;
     out.aspect = p.aspectRatio > 0.0 ? static_cast<float>(p.aspectRatio) : 1.0f;
     out.zNear = p.znear > 0.0 && std::isfinite(p.znear) ? static_cast<float>(p.znear) : 0.05f;
-    out.zFar = p.zfar > p.znear && std::isfinite(p.zfar) ? static_cast<float>(p.zfar) : 1e4f * out.zNear;
+    out.zFar =
+        p.zfar > p.znear && std::isfinite(p.zfar) ? static_cast<float>(p.zfar) : 1e4f * out.zNear;
     const glm::dvec3 eye(world[3]);
     const glm::dvec3 forward = glm::dmat3(world) * glm::dvec3(0.0, 0.0, -1.0);
     const glm::dvec3 up = glm::dmat3(world) * glm::dvec3(0.0, 1.0, 0.0);
@@ -124,7 +130,8 @@ SceneCamera MakeCamera(const Context& ctx, const tinygltf::Node& node, const glm
         Fail(ctx, where + ": camera transform is singular");
     double distance = 1.0;
     if (gltf::Member(node.extras, "pemref_look_at"))
-        distance = glm::length(gltf::Vec3Or(ctx, node.extras, "pemref_look_at", eye, where + ".extras") - eye);
+        distance = glm::length(
+            gltf::Vec3Or(ctx, node.extras, "pemref_look_at", eye, where + ".extras") - eye);
     if (!(distance > 0.0)) distance = 1.0;
     raster::Camera& c = out.camera;
     c.eye = glm::vec3(eye);
@@ -142,18 +149,23 @@ Light MakeLight(const Context& ctx, int index, const glm::dmat4& world, const st
     const tinygltf::Light& src = ctx.model.lights[static_cast<size_t>(index)];
     Light l;
     l.name = src.name;
-    if (src.type == "point") l.kind = Light::Kind::Point;
-    else if (src.type == "spot") l.kind = Light::Kind::Spot;
-    else if (src.type == "directional") l.kind = Light::Kind::Directional;
-    else Fail(ctx, where + ": unknown light type \"" + src.type + "\"");
+    if (src.type == "point")
+        l.kind = Light::Kind::Point;
+    else if (src.type == "spot")
+        l.kind = Light::Kind::Spot;
+    else if (src.type == "directional")
+        l.kind = Light::Kind::Directional;
+    else
+        Fail(ctx, where + ": unknown light type \"" + src.type + "\"");
     glm::dvec3 color(1.0);
     if (!src.color.empty()) {
         if (src.color.size() != 3) Fail(ctx, where + ": light color needs 3 numbers");
         color = glm::dvec3(src.color[0], src.color[1], src.color[2]);
     }
     const glm::dvec3 power = color * src.intensity;
-    if (!std::isfinite(power.x + power.y + power.z) || glm::min(power.x, glm::min(power.y, power.z)) < 0.0 ||
-        !std::isfinite(src.range) || src.range < 0.0)
+    if (!std::isfinite(power.x + power.y + power.z) ||
+        glm::min(power.x, glm::min(power.y, power.z)) < 0.0 || !std::isfinite(src.range) ||
+        src.range < 0.0)
         Fail(ctx, where + ": light color/intensity/range invalid");
     l.intensity = glm::vec3(power);
     l.range = static_cast<float>(src.range);
@@ -194,7 +206,8 @@ struct Traversal {
                 gltf::Note(ctx, where + ": non-perspective camera ignored");
         }
         if (const tinygltf::Value* ext = gltf::Extension(node.extensions, "KHR_lights_punctual")) {
-            const double li = gltf::NumberOr(ctx, *ext, "light", -1.0, where + ".KHR_lights_punctual");
+            const double li =
+                gltf::NumberOr(ctx, *ext, "light", -1.0, where + ".KHR_lights_punctual");
             scene->lights.push_back(MakeLight(ctx, static_cast<int>(li), world, where));
         }
         for (int child : node.children) Visit(child, world);
@@ -207,14 +220,16 @@ std::vector<int> RootNodes(const Context& ctx) {
         std::vector<char> isChild(m.nodes.size(), 0);
         for (const auto& n : m.nodes)
             for (int c : n.children)
-                if (c >= 0 && static_cast<size_t>(c) < m.nodes.size()) isChild[static_cast<size_t>(c)] = 1;
+                if (c >= 0 && static_cast<size_t>(c) < m.nodes.size())
+                    isChild[static_cast<size_t>(c)] = 1;
         std::vector<int> roots;
         for (size_t i = 0; i < m.nodes.size(); ++i)
             if (!isChild[i]) roots.push_back(static_cast<int>(i));
         return roots;
     }
     const int s = m.defaultScene >= 0 ? m.defaultScene : 0;
-    if (static_cast<size_t>(s) >= m.scenes.size()) Fail(ctx, "scene " + std::to_string(s) + " out of range");
+    if (static_cast<size_t>(s) >= m.scenes.size())
+        Fail(ctx, "scene " + std::to_string(s) + " out of range");
     return m.scenes[static_cast<size_t>(s)].nodes;
 }
 
@@ -238,7 +253,8 @@ void ReadEnvironment(const Context& ctx, Scene* scene) {
         Fail(ctx, where + ".mapping: \"" + mapping + "\" (expected latlong or cube)");
     const double intensity = gltf::NumberOr(ctx, *env, "intensity", 1.0, where);
     if (intensity < 0.0) Fail(ctx, where + ".intensity: must be >= 0");
-    const std::string exr = (std::filesystem::path(ctx.path).parent_path() / uri).lexically_normal().string();
+    const std::string exr =
+        (std::filesystem::path(ctx.path).parent_path() / uri).lexically_normal().string();
     try {
         scene->environment = LoadEnvironment(
             exr, mapping == "cube" ? Environment::Mapping::Cube : Environment::Mapping::LatLong,
@@ -252,7 +268,8 @@ void ReadViewpoints(const Context& ctx, Scene* scene) {
     const tinygltf::Value* vp = gltf::Member(SceneExtras(ctx), "pemref_viewpoints");
     if (!vp) return;
     const std::string where = "scenes.extras.pemref_viewpoints";
-    if (gltf::StringOr(ctx, *vp, "kind", "", where) != "circle") Fail(ctx, where + ".kind: expected \"circle\"");
+    if (gltf::StringOr(ctx, *vp, "kind", "", where) != "circle")
+        Fail(ctx, where + ".kind: expected \"circle\"");
     Viewpoints& v = scene->viewpoints;
     v.center = glm::vec3(gltf::Vec3Or(ctx, *vp, "center", glm::dvec3(0.0), where));
     v.radius = static_cast<float>(gltf::NumberOr(ctx, *vp, "radius", 0.0, where));
@@ -260,7 +277,8 @@ void ReadViewpoints(const Context& ctx, Scene* scene) {
     v.startDeg = static_cast<float>(gltf::NumberOr(ctx, *vp, "start_deg", 0.0, where));
     v.stepDeg = static_cast<float>(gltf::NumberOr(ctx, *vp, "step_deg", 0.0, where));
     const double count = gltf::NumberOr(ctx, *vp, "count", 0.0, where);
-    if (count < 0.0 || count > 1e6 || count != std::floor(count)) Fail(ctx, where + ".count: invalid");
+    if (count < 0.0 || count > 1e6 || count != std::floor(count))
+        Fail(ctx, where + ".count: invalid");
     v.count = static_cast<int>(count);
 }
 
@@ -276,11 +294,12 @@ Scene LoadScene(const std::string& gltfPath) {
     Traversal walk{ctx, &scene, std::vector<char>(model.nodes.size(), 0)};
     for (int root : RootNodes(ctx)) walk.Visit(root, glm::dmat4(1.0));
     if (scene.objects.empty())
-        Fail(ctx, scene.droppedDegenerate > 0
-                      ? "all " + std::to_string(scene.droppedDegenerate) + " triangles are degenerate (zero area)"
-                      : "the scene has no triangles");
+        Fail(ctx, scene.droppedDegenerate > 0 ? "all " + std::to_string(scene.droppedDegenerate) +
+                                                    " triangles are degenerate (zero area)"
+                                              : "the scene has no triangles");
     if (scene.droppedDegenerate > 0)
-        scene.notes.push_back(std::to_string(scene.droppedDegenerate) + " zero-area triangles dropped");
+        scene.notes.push_back(std::to_string(scene.droppedDegenerate) +
+                              " zero-area triangles dropped");
     ReadEnvironment(ctx, &scene);
     ReadViewpoints(ctx, &scene);
     scene.lensGroups = FindLensGroups(scene.objects, scene.materials);

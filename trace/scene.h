@@ -69,10 +69,10 @@ struct Light {
     enum class Kind { Point, Spot, Directional };
     std::string name;
     Kind kind = Kind::Point;
-    glm::vec3 position{0.0f};                 // world (point, spot)
-    glm::vec3 direction{0.0f, 0.0f, -1.0f};   // world, unit, the way light travels (spot, dir.)
-    glm::vec3 intensity{1.0f};                // colour × intensity
-    float range = 0.0f;                       // 0 = infinite
+    glm::vec3 position{0.0f};                // world (point, spot)
+    glm::vec3 direction{0.0f, 0.0f, -1.0f};  // world, unit, the way light travels (spot, dir.)
+    glm::vec3 intensity{1.0f};               // colour × intensity
+    float range = 0.0f;                      // 0 = infinite
     float innerCone = 0.0f, outerCone = 0.785398163f;  // spot only, radians
     bool operator==(const Light&) const = default;
 };
@@ -109,8 +109,8 @@ struct Scene {
     Viewpoints viewpoints;
     Environment environment;
     std::vector<LensGroup> lensGroups;
-    int droppedDegenerate = 0;        // zero-area triangles removed at load
-    std::vector<std::string> notes;   // what was skipped or approximated, one line each
+    int droppedDegenerate = 0;       // zero-area triangles removed at load
+    std::vector<std::string> notes;  // what was skipped or approximated, one line each
     bool operator==(const Scene&) const = default;
 
     size_t NumTriangles() const;

@@ -29,7 +29,8 @@ namespace {
 
 int FindRoot(std::vector<int>& parent, int i) {
     while (parent[static_cast<size_t>(i)] != i) {
-        parent[static_cast<size_t>(i)] = parent[static_cast<size_t>(parent[static_cast<size_t>(i)])];
+        parent[static_cast<size_t>(i)] =
+            parent[static_cast<size_t>(parent[static_cast<size_t>(i)])];
         i = parent[static_cast<size_t>(i)];
     }
     return i;
@@ -42,14 +43,17 @@ std::vector<LensGroup> FindLensGroups(const std::vector<Object>& objects,
     // Step 1: the lens objects.
     std::vector<int> lens;
     for (size_t i = 0; i < objects.size(); ++i)
-        if (materials[static_cast<size_t>(objects[i].material)].IsLens()) lens.push_back(static_cast<int>(i));
+        if (materials[static_cast<size_t>(objects[i].material)].IsLens())
+            lens.push_back(static_cast<int>(i));
     // Step 2: union-find over pairs whose boxes touch, overlap or nest (O(n²); lenses are few).
     std::vector<int> parent(lens.size());
     std::iota(parent.begin(), parent.end(), 0);
     for (size_t a = 0; a < lens.size(); ++a)
         for (size_t b = a + 1; b < lens.size(); ++b)
-            if (Overlaps(objects[static_cast<size_t>(lens[a])].bounds, objects[static_cast<size_t>(lens[b])].bounds)) {
-                const int ra = FindRoot(parent, static_cast<int>(a)), rb = FindRoot(parent, static_cast<int>(b));
+            if (Overlaps(objects[static_cast<size_t>(lens[a])].bounds,
+                         objects[static_cast<size_t>(lens[b])].bounds)) {
+                const int ra = FindRoot(parent, static_cast<int>(a)),
+                          rb = FindRoot(parent, static_cast<int>(b));
                 parent[static_cast<size_t>(std::max(ra, rb))] = std::min(ra, rb);
             }
     // Step 3: groups in order of their first (lowest) object index.
@@ -79,10 +83,12 @@ raster::Camera ViewpointCamera(const Scene& scene, int k, int width, int height)
     const Viewpoints& v = scene.viewpoints;
     raster::Camera c;
     if (scene.camera) c = scene.camera->camera;
-    const double a = (static_cast<double>(v.startDeg) + k * static_cast<double>(v.stepDeg)) * std::numbers::pi / 180.0;
+    const double a = (static_cast<double>(v.startDeg) + k * static_cast<double>(v.stepDeg)) *
+                     std::numbers::pi / 180.0;
     const double r = static_cast<double>(v.radius);
-    c.eye = glm::vec3(static_cast<float>(static_cast<double>(v.center.x) + r * std::sin(a)), v.height,
-                      static_cast<float>(static_cast<double>(v.center.z) + r * std::cos(a)));
+    c.eye =
+        glm::vec3(static_cast<float>(static_cast<double>(v.center.x) + r * std::sin(a)), v.height,
+                  static_cast<float>(static_cast<double>(v.center.z) + r * std::cos(a)));
     c.target = v.center;
     c.up = {0.0f, 1.0f, 0.0f};
     c.width = width;
@@ -98,20 +104,23 @@ SurfacePoint SurfaceAt(const Object& object, int prim, float u, float v) {
     const glm::vec3 n = w * object.normals[t.x] + u * object.normals[t.y] + v * object.normals[t.z];
     const float len = glm::length(n);
     if (len > 0.0f) sp.normal = n / len;
-    if (!object.uvs.empty()) sp.uv = w * object.uvs[t.x] + u * object.uvs[t.y] + v * object.uvs[t.z];
+    if (!object.uvs.empty())
+        sp.uv = w * object.uvs[t.x] + u * object.uvs[t.y] + v * object.uvs[t.z];
     return sp;
 }
 
 glm::vec3 BaseColorAt(const Scene& scene, const Object& object, const SurfacePoint& sp) {
     const Material& m = scene.materials[static_cast<size_t>(object.material)];
     if (m.baseColorTexture < 0) return m.baseColor;
-    return m.baseColor * SampleTexture(scene.textures[static_cast<size_t>(m.baseColorTexture)], sp.uv);
+    return m.baseColor *
+           SampleTexture(scene.textures[static_cast<size_t>(m.baseColorTexture)], sp.uv);
 }
 
 glm::vec3 EmissionAt(const Scene& scene, const Object& object, const SurfacePoint& sp) {
     const Material& m = scene.materials[static_cast<size_t>(object.material)];
     if (m.emissiveTexture < 0) return m.emission;
-    return m.emission * SampleTexture(scene.textures[static_cast<size_t>(m.emissiveTexture)], sp.uv);
+    return m.emission *
+           SampleTexture(scene.textures[static_cast<size_t>(m.emissiveTexture)], sp.uv);
 }
 
 }  // namespace pem::trace

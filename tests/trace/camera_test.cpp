@@ -2,12 +2,13 @@
 // camera_test.cpp — raster/camera.h: the pixel convention (rows top-down, centres at +0.5), that
 // PixelRay inverts ViewProjection, and that raster/ draws a point on the pixel whose centre ray
 // hits it.
+#include "raster/camera.h"
+
 #include <gtest/gtest.h>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <random>
 
-#include "raster/camera.h"
 #include "raster/render.h"
 
 namespace pem::raster {
@@ -29,7 +30,8 @@ glm::vec2 ProjectGl(const Camera& c, const glm::vec3& p) {
     const glm::vec4 clip = ViewProjection(c, 0.05f, 100.0f) * glm::vec4(p, 1.0f);
     const glm::vec3 ndc = glm::vec3(clip) / clip.w;
     const float windowY = (ndc.y + 1.0f) * 0.5f * static_cast<float>(c.height);
-    return {(ndc.x + 1.0f) * 0.5f * static_cast<float>(c.width), static_cast<float>(c.height) - windowY};
+    return {(ndc.x + 1.0f) * 0.5f * static_cast<float>(c.width),
+            static_cast<float>(c.height) - windowY};
 }
 
 TEST(Camera, PixelRayPassesThroughProjectedPoint) {
@@ -82,7 +84,8 @@ TEST(Camera, RasterDrawsOnThePixelOfTheCentreRay) {
     const glm::mat4 vp = ViewProjection(c, 0.05f, 100.0f);
     // A triangle of ~0.25 pixel around the hit point, built in the camera's image plane.
     const glm::vec3 right = glm::normalize(glm::cross(r.dir, c.up)), up = glm::cross(right, r.dir);
-    const float s = 0.25f * 3.0f * 2.0f * std::tan(0.5f * c.fovYRadians) / static_cast<float>(c.height);
+    const float s =
+        0.25f * 3.0f * 2.0f * std::tan(0.5f * c.fovYRadians) / static_cast<float>(c.height);
     Pass pass;
     pass.numUnits = 0;
     for (const glm::vec3& p : {hit - s * right - s * up, hit + s * right - s * up, hit + s * up}) {

@@ -3,12 +3,13 @@
 // materials, lens groups, camera, lights and environment; every malformed input (our crafted
 // tests/data/bad_scenes and Debian's assimp-testmodels when installed) gives a one-line
 // pem::InputError naming the file.
-#include <gtest/gtest.h>
+#include "trace/scene.h"
 
 #include <ImfEnvmapAttribute.h>
 #include <ImfHeader.h>
-#include <ImfStandardAttributes.h>
 #include <ImfRgbaFile.h>
+#include <ImfStandardAttributes.h>
+#include <gtest/gtest.h>
 
 #include <chrono>
 #include <cmath>
@@ -18,7 +19,6 @@
 #include <numbers>
 #include <sstream>
 
-#include "trace/scene.h"
 #include "viewer_tty/input_error.h"
 
 namespace pem::trace {
@@ -52,7 +52,8 @@ void ExpectConsistentObjects(const Scene& s) {
 TEST(Scene, HybridGlassTeapotLoads) {
     const auto t0 = std::chrono::steady_clock::now();
     const Scene s = LoadScene(kRoot + "/data/scenes/hybrid_glass_teapot.gltf");
-    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    const double ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     RecordProperty("load_ms", std::to_string(ms));
     EXPECT_EQ(s.objects.size(), 20u);  // teapot, cup, 8 columns, floor x2, 4 walls x2
     EXPECT_EQ(s.NumTriangles(), 25188u);
@@ -74,7 +75,8 @@ TEST(Scene, HybridGlassTeapotLoads) {
     const Material& glass = s.materials[static_cast<size_t>(teapot->material)];
     EXPECT_EQ(glass.kind, MaterialKind::Glass);
     EXPECT_FLOAT_EQ(glass.ior, 1.5f);
-    ExpectNear3(glass.absorption, glm::vec3(-std::log(0.82f), -std::log(0.95f), -std::log(0.9f)) / 1.5f, 1e-6f);
+    ExpectNear3(glass.absorption,
+                glm::vec3(-std::log(0.82f), -std::log(0.95f), -std::log(0.9f)) / 1.5f, 1e-6f);
     const Material& mirror = s.materials[static_cast<size_t>(cup->material)];
     EXPECT_EQ(mirror.kind, MaterialKind::Mirror);
     ExpectNear3(mirror.baseColor, glm::vec3(0.9f), 1e-6f);
@@ -157,12 +159,12 @@ TEST(Scene, LensGroupsJoinTouchingOverlappingAndNestedBoxes) {
         return o;
     };
     const std::vector<Object> objs = {
-        box({0, 0, 0}, {1, 1, 1}, 1),          // 0
-        box({5, 0, 0}, {6, 1, 1}, 1),          // 1: alone
-        box({1, 0, 0}, {2, 1, 1}, 1),          // 2: touches 0
+        box({0, 0, 0}, {1, 1, 1}, 1),                    // 0
+        box({5, 0, 0}, {6, 1, 1}, 1),                    // 1: alone
+        box({1, 0, 0}, {2, 1, 1}, 1),                    // 2: touches 0
         box({0.2f, 0.2f, 0.2f}, {0.4f, 0.4f, 0.4f}, 1),  // 3: nested in 0
-        box({6, 0, 0}, {9, 9, 9}, 0),          // 4: diffuse, touches 1 but is no lens
-        box({1.5f, 0.5f, 0.5f}, {3, 3, 3}, 1),  // 5: overlaps 2
+        box({6, 0, 0}, {9, 9, 9}, 0),                    // 4: diffuse, touches 1 but is no lens
+        box({1.5f, 0.5f, 0.5f}, {3, 3, 3}, 1),           // 5: overlaps 2
     };
     const std::vector<LensGroup> g = FindLensGroups(objs, mats);
     ASSERT_EQ(g.size(), 2u);
@@ -174,30 +176,36 @@ TEST(Scene, LensGroupsJoinTouchingOverlappingAndNestedBoxes) {
 // Environment ------------------------------------------------------------------------------
 
 TEST(Environment, LatLongTexelCentresAndSanity) {
-    const Environment env = LoadEnvironment(kRoot + "/data/env/studio.exr", Environment::Mapping::LatLong, 2.0f);
+    const Environment env =
+        LoadEnvironment(kRoot + "/data/env/studio.exr", Environment::Mapping::LatLong, 2.0f);
     ASSERT_EQ(env.width, 512);
     ASSERT_EQ(env.height, 256);
     const double pi = std::numbers::pi;
     // The direction of texel (i, j)'s centre returns that texel exactly (times intensity).
     for (int j : {3, 64, 128, 200}) {
         for (int i : {0, 100, 255, 256, 511}) {
-            const double lon = (0.5 - (i + 0.5) / 512.0) * 2.0 * pi, lat = (0.5 - (j + 0.5) / 256.0) * pi;
-            const glm::vec3 d(static_cast<float>(std::cos(lat) * std::sin(lon)), static_cast<float>(std::sin(lat)),
+            const double lon = (0.5 - (i + 0.5) / 512.0) * 2.0 * pi,
+                         lat = (0.5 - (j + 0.5) / 256.0) * pi;
+            const glm::vec3 d(static_cast<float>(std::cos(lat) * std::sin(lon)),
+                              static_cast<float>(std::sin(lat)),
                               static_cast<float>(std::cos(lat) * std::cos(lon)));
             const size_t at = 3 * static_cast<size_t>(j * 512 + i);
             const glm::vec3 texel(env.rgb[at], env.rgb[at + 1], env.rgb[at + 2]);
             const glm::vec3 got = EnvRadiance(env, d);
-            for (int c = 0; c < 3; ++c) EXPECT_NEAR(got[c], 2.0f * texel[c], 1e-3f * (1.0f + texel[c])) << i << "," << j;
+            for (int c = 0; c < 3; ++c)
+                EXPECT_NEAR(got[c], 2.0f * texel[c], 1e-3f * (1.0f + texel[c])) << i << "," << j;
         }
     }
     // Finite and non-negative everywhere; continuous across the ±π seam.
     for (int k = 0; k < 1000; ++k) {
         const float a = 0.37f * static_cast<float>(k), b = 0.011f * static_cast<float>(k);
-        const glm::vec3 r = EnvRadiance(env, {std::sin(a) * std::cos(b), std::sin(b), std::cos(a) * std::cos(b)});
+        const glm::vec3 r =
+            EnvRadiance(env, {std::sin(a) * std::cos(b), std::sin(b), std::cos(a) * std::cos(b)});
         ASSERT_TRUE(std::isfinite(r.x + r.y + r.z));
         ASSERT_GE(std::min(r.x, std::min(r.y, r.z)), 0.0f);
     }
-    const glm::vec3 left = EnvRadiance(env, {1e-4f, 0.1f, -1.0f}), right = EnvRadiance(env, {-1e-4f, 0.1f, -1.0f});
+    const glm::vec3 left = EnvRadiance(env, {1e-4f, 0.1f, -1.0f}),
+                    right = EnvRadiance(env, {-1e-4f, 0.1f, -1.0f});
     EXPECT_LT(glm::length(left - right), 0.05f * (1.0f + glm::length(left)));
 }
 
@@ -206,7 +214,8 @@ TEST(Environment, CubeFacesFollowOpenExrLayout) {
     const int n = 4;
     std::vector<Imf::Rgba> px(static_cast<size_t>(n * 6 * n));
     for (int f = 0; f < 6; ++f)
-        for (int k = 0; k < n * n; ++k) px[static_cast<size_t>(f * n * n + k)] = Imf::Rgba(float(f + 1), 0.0f, 0.5f, 1.0f);
+        for (int k = 0; k < n * n; ++k)
+            px[static_cast<size_t>(f * n * n + k)] = Imf::Rgba(float(f + 1), 0.0f, 0.5f, 1.0f);
     const std::string path = testing::TempDir() + "/pemref_cube_test.exr";
     {
         Imf::Header header(n, 6 * n);
@@ -218,7 +227,8 @@ TEST(Environment, CubeFacesFollowOpenExrLayout) {
     const Environment env = LoadEnvironment(path, Environment::Mapping::Cube, 1.0f);
     const glm::vec3 axes[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
     for (int f = 0; f < 6; ++f) EXPECT_FLOAT_EQ(EnvRadiance(env, axes[f]).x, float(f + 1)) << f;
-    EXPECT_THROW(LoadEnvironment(kRoot + "/data/env/studio.exr", Environment::Mapping::Cube, 1.0f), pem::InputError);
+    EXPECT_THROW(LoadEnvironment(kRoot + "/data/env/studio.exr", Environment::Mapping::Cube, 1.0f),
+                 pem::InputError);
 }
 
 // Bad inputs -------------------------------------------------------------------------------
@@ -237,7 +247,8 @@ std::string LoadError(const std::string& path) {
     return "";
 }
 
-void ExpectOneLineErrorNaming(const std::string& path, const std::string& message, const std::string& cause) {
+void ExpectOneLineErrorNaming(const std::string& path, const std::string& message,
+                              const std::string& cause) {
     ASSERT_FALSE(message.empty()) << path << " loaded without an error";
     EXPECT_EQ(message.rfind(path + ": ", 0), 0u) << message;
     EXPECT_EQ(message.find('\n'), std::string::npos) << message;
@@ -290,17 +301,25 @@ TEST(SceneErrors, AssimpTestModelsNeverCrash) {
         {"TestNoRootNode/SceneWithoutNodes.gltf", "no triangles"},
         {"draco/2CylinderEngine.gltf", "KHR_draco_mesh_compression"},
         {"BoxTextured-glTF-techniqueWebGL/BoxTextured.gltf", "KHR_technique_webgl"},
-        {"glTF-Asset-Generator/Mesh_PrimitiveMode/Mesh_PrimitiveMode_00.gltf", "no triangles"},  // points
-        {"glTF-Asset-Generator/Mesh_PrimitiveMode/Mesh_PrimitiveMode_01.gltf", "no triangles"},  // lines
+        {"glTF-Asset-Generator/Mesh_PrimitiveMode/Mesh_PrimitiveMode_00.gltf",
+         "no triangles"},  // points
+        {"glTF-Asset-Generator/Mesh_PrimitiveMode/Mesh_PrimitiveMode_01.gltf",
+         "no triangles"},  // lines
     };
     // Loadable: tinygltf drops wrongly typed optional members (wrongTypes/bad{String,Uint,Object,
     // Extension}), strips/fans, textures, skins/morphs (bind pose).
     const std::vector<std::string> loadable = {
-        "wrongTypes/badString.gltf", "wrongTypes/badUint.gltf", "wrongTypes/badObject.gltf",
-        "wrongTypes/badExtension.gltf", "BoxBadNormals-glTF-Binary/BoxBadNormals.glb",
-        "IncorrectVertexArrays/Cube.gltf", "glTF-Asset-Generator/Mesh_PrimitiveMode/Mesh_PrimitiveMode_05.gltf",
-        "glTF-Asset-Generator/Mesh_PrimitiveMode/Mesh_PrimitiveMode_06.gltf", "BoxTextured-glTF/BoxTextured.gltf",
-        "simple_skin/simple_skin.gltf", "2CylinderEngine-glTF-Binary/2CylinderEngine.glb"};
+        "wrongTypes/badString.gltf",
+        "wrongTypes/badUint.gltf",
+        "wrongTypes/badObject.gltf",
+        "wrongTypes/badExtension.gltf",
+        "BoxBadNormals-glTF-Binary/BoxBadNormals.glb",
+        "IncorrectVertexArrays/Cube.gltf",
+        "glTF-Asset-Generator/Mesh_PrimitiveMode/Mesh_PrimitiveMode_05.gltf",
+        "glTF-Asset-Generator/Mesh_PrimitiveMode/Mesh_PrimitiveMode_06.gltf",
+        "BoxTextured-glTF/BoxTextured.gltf",
+        "simple_skin/simple_skin.gltf",
+        "2CylinderEngine-glTF-Binary/2CylinderEngine.glb"};
     int counted = 0;
     for (const auto& [file, cause] : broken) {
         if (!std::filesystem::exists(root + file)) continue;
@@ -336,8 +355,9 @@ TEST(Scene, BaseColorTextureIsSampled) {
     const glm::vec3 c = BaseColorAt(s, o, sp);
     EXPECT_TRUE(c.x >= 0.0f && c.x <= 1.0f && c.y >= 0.0f && c.z <= 1.0f);
     const Texture2D& t = s.textures[0];
-    EXPECT_EQ(SampleTexture(t, {0.5f / static_cast<float>(t.width), 0.5f / static_cast<float>(t.height)}),
-              glm::vec3(t.rgb[0], t.rgb[1], t.rgb[2]));
+    EXPECT_EQ(
+        SampleTexture(t, {0.5f / static_cast<float>(t.width), 0.5f / static_cast<float>(t.height)}),
+        glm::vec3(t.rgb[0], t.rgb[1], t.rgb[2]));
 }
 
 }  // namespace
