@@ -118,15 +118,29 @@ void ShadeGroup(const FragmentTarget& tg, const Pass& pass, const TriangleSetup&
 // is shaded when at least one of its pixels is covered (llvmpipe skips empty 8-lane vectors).
 void DrawTriangle(const FragmentTarget& tg, const Pass& pass, const TriangleSetup& t, int worker,
                   int workers) {
+    // Edge values per lane relative to the group origin, so a group costs 8 adds per edge.
+    int64_t laneOffset[3][kLanes];
+    for (int e = 0; e < 3; ++e)
+        for (int l = 0; l < kLanes; ++l)
+            laneOffset[e][l] = -t.edge[e].dcdx * kLaneDx[l] + t.edge[e].dcdy * kLaneDy[l];
     const int gy0 = t.y0 & ~1, gx0 = t.x0 & ~3;
     for (int gy = gy0; gy <= t.y1; gy += 2) {
         if ((gy / 2 / kBandQuadRows) % workers != worker) continue;
+        unsigned rowMask = 0;  // lanes whose row lies inside the bounding box
+        for (int l = 0; l < kLanes; ++l) {
+            const int y = gy + kLaneDy[l];
+            rowMask |= static_cast<unsigned>(y >= t.y0 && y <= t.y1) << l;
+        }
         for (int gx = gx0; gx <= t.x1; gx += 4) {
-            unsigned mask = 0;
+            unsigned mask = rowMask;
             for (int l = 0; l < kLanes; ++l) {
-                const int x = gx + kLaneDx[l], y = gy + kLaneDy[l];
-                if (x >= t.x0 && x <= t.x1 && y >= t.y0 && y <= t.y1 && Inside(t, x, y))
-                    mask |= 1u << l;
+                const int x = gx + kLaneDx[l];
+                mask &= ~(static_cast<unsigned>(x < t.x0 || x > t.x1) << l);
+            }
+            for (int e = 0; e < 3 && mask; ++e) {
+                const int64_t base = t.edge[e].c - t.edge[e].dcdx * gx + t.edge[e].dcdy * gy;
+                for (int l = 0; l < kLanes; ++l)
+                    mask &= ~(static_cast<unsigned>(base + laneOffset[e][l] <= 0) << l);
             }
             if (mask) ShadeGroup(tg, pass, t, gx, gy, mask);
         }
