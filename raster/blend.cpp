@@ -88,18 +88,4 @@ RgbaF BlendF(const BlendState& st, const RgbaF& s, const RgbaF& d) {
     return out;
 }
 
-bool BlendIsDstAffine(const BlendState& st) {
-    if (!st.enabled) return true;
-    auto dstFree = [](BlendFactor f) {
-        return f != BlendFactor::DstColor && f != BlendFactor::OneMinusDstColor &&
-               f != BlendFactor::DstAlpha && f != BlendFactor::OneMinusDstAlpha &&
-               f != BlendFactor::SrcAlphaSaturate;
-    };
-    auto linearEq = [](BlendEquation e) {
-        return e != BlendEquation::Min && e != BlendEquation::Max;
-    };
-    return dstFree(st.srcRgb) && dstFree(st.dstRgb) && dstFree(st.srcAlpha) &&
-           dstFree(st.dstAlpha) && linearEq(st.eqRgb) && linearEq(st.eqAlpha);
-}
-
 }  // namespace pem::raster

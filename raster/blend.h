@@ -18,8 +18,4 @@ using RgbaF = std::array<float, 4>;
 Rgba8 Blend8(const BlendState& state, const Rgba8& src, const Rgba8& dst);
 RgbaF BlendF(const BlendState& state, const RgbaF& src, const RgbaF& dst);
 
-// True when a blend is affine in the destination with coefficients that do not depend on the
-// destination (so a frame stays linear in the texels across passes, see render_matrix.h).
-bool BlendIsDstAffine(const BlendState& state);
-
 }  // namespace pem::raster

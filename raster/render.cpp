@@ -135,9 +135,7 @@ RenderingMatrix BuildRenderingMatrix(const PreparedFrame& prepared, const Render
     const Frame& frame = prepared.frame();
     for (size_t i = 0; i < frame.passes.size(); ++i) {
         const Pass& p = frame.passes[i];
-        const bool ok = !p.blend.enabled || (p.numUnits == 0 && BlendIsDstAffine(p.blend)) ||
-                        p.blend == BlendState::Additive();
-        if (!ok || (p.numUnits == 0 && p.blend.enabled && !(p.blend == BlendState::Additive())))
+        if (p.blend.enabled && !(p.blend == BlendState::Additive()))
             throw std::invalid_argument("pass " + std::to_string(i) +
                                         ": blend is not linear in the texels (use none or add)");
     }

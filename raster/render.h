@@ -67,10 +67,10 @@ RenderResult Render(const PreparedFrame& frame, const RenderOptions& options);
 // The rendering matrix of a frame whose passes are linear in the texels (texel_index.h numbers
 // rows and columns): rendered = A * x + offset, x = texel bytes / 255 over all textures, rows per
 // (pixel, channel). A pass contributes the taps of its unit 0; unit 1 and the vertex colour are
-// folded into the weights. Passes must blend with "none", "add", or (untextured passes only) a
-// destination-affine blend; otherwise BuildRenderingMatrix throws std::invalid_argument.
+// folded into the weights. Passes must blend with "none" (the pass replaces the row) or "add"
+// (it adds to it); anything else throws std::invalid_argument.
 // In the Linear profile `rendered` equals A * x + offset to float rounding; in the Llvmpipe
-// profile it is the 8-bit frame / 255 (render_matrix.h states the bound).
+// profile it is the 8-bit frame / 255, within the bound of docs/raster-model.md §8.
 struct RenderingMatrix {
     int64_t rows = 0, cols = 0;
     std::vector<int64_t> rowPtr;  // CSR, rows + 1 entries
