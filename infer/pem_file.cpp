@@ -1,0 +1,244 @@
+// SPDX-License-Identifier: MIT
+// pem_file.cpp — OpenEXR cube-map writer and reader (pem_file.h).
+#include "infer/pem_file.h"
+
+#include <ImfChannelList.h>
+#include <ImfEnvmap.h>
+#include <ImfEnvmapAttribute.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfIntAttribute.h>
+#include <ImfStandardAttributes.h>
+#include <ImfTiledInputFile.h>
+#include <ImfTiledOutputFile.h>
+
+#include <array>
+#include <cmath>
+#include <filesystem>
+#include <stdexcept>
+
+namespace pem::infer {
+namespace {
+
+constexpr const char* kLevelsAttribute = "pemrefLevels";
+constexpr const char* kChannelNames[kChannels] = {"R", "G", "B", "A"};
+constexpr int kTileSize = 32;
+
+// GL face table (GL 4.6 table 8.19) inverted: the direction of face coordinates (s, t).
+Imath::V3f GlDirection(int face, double s, double t) {
+    const float sc = static_cast<float>(2.0 * s - 1.0), tc = static_cast<float>(2.0 * t - 1.0);
+    switch (face) {
+        case 0: return {1.0f, -tc, -sc};
+        case 1: return {-1.0f, -tc, sc};
+        case 2: return {sc, 1.0f, tc};
+        case 3: return {sc, -1.0f, -tc};
+        case 4: return {sc, -tc, 1.0f};
+        default: return {-sc, -tc, -1.0f};
+    }
+}
+
+// One of the 8 symmetries of the square: (i, j) -> (x, y) inside an n x n face.
+struct FaceTransform {
+    bool transpose = false, flipX = false, flipY = false;
+    ExrPixel Apply(int i, int j, int n) const {
+        int x = transpose ? j : i, y = transpose ? i : j;
+        if (flipX) x = n - 1 - x;
+        if (flipY) y = n - 1 - y;
+        return {x, y};
+    }
+};
+
+// Derive each face's transform from OpenEXR's own helpers on an 8 x 48 probe level.
+std::array<FaceTransform, 6> DeriveFaceTransforms() {
+    constexpr int n = 8;
+    const Imath::Box2i dw(Imath::V2i(0, 0), Imath::V2i(n - 1, 6 * n - 1));
+    std::array<FaceTransform, 6> out;
+    for (int f = 0; f < 6; ++f) {
+        bool found = false;
+        for (int k = 0; k < 8 && !found; ++k) {
+            const FaceTransform tr{(k & 1) != 0, (k & 2) != 0, (k & 4) != 0};
+            bool ok = true;
+            for (int j = 0; j < n && ok; ++j)
+                for (int i = 0; i < n && ok; ++i) {
+                    Imf::CubeMapFace face;
+                    Imath::V2f pif;
+                    Imf::CubeMap::faceAndPixelPosition(GlDirection(f, (i + 0.5) / n, (j + 0.5) / n), dw, face, pif);
+                    const Imath::V2f pos = Imf::CubeMap::pixelPosition(face, dw, pif);
+                    const Imath::Box2i fw = Imf::CubeMap::dataWindowForFace(face, dw);
+                    const ExrPixel p = tr.Apply(i, j, n);
+                    ok = static_cast<int>(face) == f &&
+                         static_cast<int>(std::lround(pos.x)) == fw.min.x + p.x &&
+                         static_cast<int>(std::lround(pos.y)) == fw.min.y + p.y;
+                }
+            if (ok) {
+                out[static_cast<size_t>(f)] = tr;
+                found = true;
+            }
+        }
+        if (!found) throw std::logic_error("pem_file: no face transform matches OpenEXR's cube layout");
+    }
+    return out;
+}
+
+const std::array<FaceTransform, 6>& FaceTransforms() {
+    static const std::array<FaceTransform, 6> transforms = DeriveFaceTransforms();
+    return transforms;
+}
+
+// The mean RGBA of the coarsest level (the fill of levels the map does not have).
+std::array<float, kChannels> CoarsestMean(const CubeMapF& map) {
+    const std::vector<float>& level = map.levels.back();
+    std::array<double, kChannels> sum{};
+    for (size_t k = 0; k < level.size(); ++k) sum[k % kChannels] += static_cast<double>(level[k]);
+    std::array<float, kChannels> mean{};
+    const double count = static_cast<double>(level.size() / kChannels);
+    for (size_t c = 0; c < kChannels; ++c) mean[c] = static_cast<float>(sum[c] / count);
+    return mean;
+}
+
+// The interleaved RGBA image of EXR level l (w x h).
+std::vector<float> LevelImage(const CubeMapF& map, int l, int w, int h,
+                              const std::array<float, kChannels>& fill) {
+    std::vector<float> px(static_cast<size_t>(w) * static_cast<size_t>(h) * kChannels);
+    if (l >= map.NumLevels()) {
+        for (size_t k = 0; k < px.size(); ++k) px[k] = fill[k % kChannels];
+        return px;
+    }
+    const int n = map.LevelSize(l);
+    const std::vector<float>& level = map.levels[static_cast<size_t>(l)];
+    for (int f = 0; f < 6; ++f)
+        for (int j = 0; j < n; ++j)
+            for (int i = 0; i < n; ++i) {
+                const ExrPixel p = ExrPixelOf(f, i, j, n);
+                const size_t src = static_cast<size_t>(((f * n + j) * n + i) * kChannels);
+                const size_t dst = (static_cast<size_t>(p.y) * static_cast<size_t>(w) + static_cast<size_t>(p.x)) * kChannels;
+                for (size_t c = 0; c < kChannels; ++c) px[dst + c] = level[src + c];
+            }
+    return px;
+}
+
+// Slices of an interleaved RGBA buffer whose first pixel is the data window's minimum.
+Imf::FrameBuffer RgbaFrameBuffer(std::vector<float>* px, const Imath::Box2i& dw) {
+    const size_t w = static_cast<size_t>(dw.max.x - dw.min.x + 1);
+    const size_t xStride = kChannels * sizeof(float), yStride = xStride * w;
+    // OpenEXR addresses pixel (x, y) at base + x * xStride + y * yStride.
+    char* origin = reinterpret_cast<char*>(px->data()) -
+                   static_cast<std::ptrdiff_t>(static_cast<size_t>(dw.min.x) * xStride + static_cast<size_t>(dw.min.y) * yStride);
+    Imf::FrameBuffer fb;
+    for (size_t c = 0; c < kChannels; ++c)
+        fb.insert(kChannelNames[c], Imf::Slice(Imf::FLOAT, origin + c * sizeof(float), xStride,
+                                               yStride, 1, 1, c == 3 ? 1.0 : 0.0));
+    return fb;
+}
+
+bool IsPowerOfTwo(int n) { return n > 0 && (n & (n - 1)) == 0; }
+
+void CheckWritable(const CubeMapF& map) {
+    if (!IsPowerOfTwo(map.size) || map.levels.empty())
+        throw std::invalid_argument("WriteCubeMapExr: size must be a power of two with >= 1 level");
+    for (int l = 0; l < map.NumLevels(); ++l) {
+        const size_t n = static_cast<size_t>(map.LevelSize(l));
+        if (map.levels[static_cast<size_t>(l)].size() != 6 * n * n * kChannels || (l > 0 && n == 1 && map.LevelSize(l - 1) == 1))
+            throw std::invalid_argument("WriteCubeMapExr: level sizes differ from the cube chain");
+    }
+}
+
+void WriteExr(const CubeMapF& map, const std::string& path) {
+    // Header: N x 6N, float RGBA, cube envmap, tiled with every ROUND_DOWN MIP level.
+    Imf::Header header(map.size, 6 * map.size);
+    for (const char* name : kChannelNames) header.channels().insert(name, Imf::Channel(Imf::FLOAT));
+    header.setTileDescription(Imf::TileDescription(kTileSize, kTileSize, Imf::MIPMAP_LEVELS, Imf::ROUND_DOWN));
+    header.compression() = Imf::ZIP_COMPRESSION;
+    Imf::addEnvmap(header, Imf::ENVMAP_CUBE);
+    header.insert(kLevelsAttribute, Imf::IntAttribute(map.NumLevels()));
+    Imf::TiledOutputFile out(path.c_str(), header);
+    // Every level, the degenerate tail included.
+    const std::array<float, kChannels> fill = CoarsestMean(map);
+    for (int l = 0; l < out.numLevels(); ++l) {
+        const Imath::Box2i dw = out.dataWindowForLevel(l);
+        std::vector<float> px = LevelImage(map, l, dw.max.x - dw.min.x + 1, dw.max.y - dw.min.y + 1, fill);
+        out.setFrameBuffer(RgbaFrameBuffer(&px, dw));
+        out.writeTiles(0, out.numXTiles(l) - 1, 0, out.numYTiles(l) - 1, l);
+    }
+}
+
+}  // namespace
+
+int ExrLevelCount(int size) {
+    int levels = 1;
+    for (int h = 6 * size; h > 1; h >>= 1) ++levels;
+    return levels;
+}
+
+ExrPixel ExrPixelOf(int face, int i, int j, int n) {
+    const ExrPixel p = FaceTransforms()[static_cast<size_t>(face)].Apply(i, j, n);
+    return {p.x, face * n + p.y};
+}
+
+void WriteCubeMapExr(const CubeMapF& map, const std::string& path) {
+    CheckWritable(map);
+    const std::string tmp = path + ".tmp";
+    try {
+        WriteExr(map, tmp);
+        std::filesystem::rename(tmp, path);
+    } catch (...) {
+        std::error_code ignored;
+        std::filesystem::remove(tmp, ignored);
+        throw;
+    }
+}
+
+ExrLevelImage ReadExrLevel(const std::string& path, int level) {
+    Imf::TiledInputFile in(path.c_str());
+    if (level < 0 || level >= in.numLevels()) throw std::runtime_error(path + ": no such level");
+    const Imath::Box2i dw = in.dataWindowForLevel(level);
+    ExrLevelImage img;
+    img.width = dw.max.x - dw.min.x + 1;
+    img.height = dw.max.y - dw.min.y + 1;
+    img.rgba.resize(static_cast<size_t>(img.width) * static_cast<size_t>(img.height) * kChannels);
+    in.setFrameBuffer(RgbaFrameBuffer(&img.rgba, dw));
+    in.readTiles(0, in.numXTiles(level) - 1, 0, in.numYTiles(level) - 1, level);
+    return img;
+}
+
+CubeMapF ReadCubeMapExr(const std::string& path) {
+    Imf::TiledInputFile in(path.c_str());
+    const Imf::Header& header = in.header();
+    // Check: a mip-mapped cube map of N x 6N.
+    if (!Imf::hasEnvmap(header) || Imf::envmap(header) != Imf::ENVMAP_CUBE)
+        throw std::runtime_error(path + ": not a cube environment map");
+    const Imath::Box2i dw = header.dataWindow();
+    const int n = dw.max.x - dw.min.x + 1;
+    if (dw.max.y - dw.min.y + 1 != 6 * n || !IsPowerOfTwo(n))
+        throw std::runtime_error(path + ": data window is not N x 6N with N a power of two");
+    if (in.levelMode() != Imf::MIPMAP_LEVELS) throw std::runtime_error(path + ": not mip-mapped");
+    int levels = 1;
+    while ((n >> levels) >= 1) ++levels;  // log2(N) + 1 cube levels
+    if (const auto* attr = header.findTypedAttribute<Imf::IntAttribute>(kLevelsAttribute))
+        levels = std::min(levels, attr->value());
+    if (levels < 1 || levels > in.numLevels()) throw std::runtime_error(path + ": missing levels");
+    // Read each cube level and undo the face layout.
+    CubeMapF map;
+    map.size = n;
+    for (int l = 0; l < levels; ++l) {
+        const Imath::Box2i ldw = in.dataWindowForLevel(l);
+        const int w = ldw.max.x - ldw.min.x + 1;
+        std::vector<float> px(static_cast<size_t>(w) * static_cast<size_t>(ldw.max.y - ldw.min.y + 1) * kChannels);
+        in.setFrameBuffer(RgbaFrameBuffer(&px, ldw));
+        in.readTiles(0, in.numXTiles(l) - 1, 0, in.numYTiles(l) - 1, l);
+        const int ln = map.LevelSize(l);
+        std::vector<float> level(static_cast<size_t>(6 * ln * ln * kChannels));
+        for (int f = 0; f < 6; ++f)
+            for (int j = 0; j < ln; ++j)
+                for (int i = 0; i < ln; ++i) {
+                    const ExrPixel p = ExrPixelOf(f, i, j, ln);
+                    const size_t src = (static_cast<size_t>(p.y) * static_cast<size_t>(w) + static_cast<size_t>(p.x)) * kChannels;
+                    const size_t dst = static_cast<size_t>(((f * ln + j) * ln + i) * kChannels);
+                    for (size_t c = 0; c < kChannels; ++c) level[dst + c] = px[src + c];
+                }
+        map.levels.push_back(std::move(level));
+    }
+    return map;
+}
+
+}  // namespace pem::infer

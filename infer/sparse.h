@@ -1,0 +1,83 @@
+// SPDX-License-Identifier: MIT
+// sparse.h — the CSR matrix of infer/ and its deterministic kernels.
+//
+//   CsrMatrix a = CsrFromRendering(renderingMatrix);   // raster's CSR layout, copied
+//   SparseOperator op(std::move(a));                   // keeps A and A^T (both CSR)
+//   op.Apply(x, &y, threads);                           // y = A x, rows split across threads
+//   op.ApplyTranspose(r, &g, threads);                  // g = A^T r through the transpose CSR
+//
+// Conventions: double values, uint32 column indices, int64 row pointers (raster's layout). Each
+// output entry of a product is one row's dot product summed in column-entry order by one
+// thread, so results are the same bytes for any thread count (no atomics, no reductions across
+// threads). A^T is precomputed as its own CSR whose rows list entries in increasing row order.
+// Not here: per-channel vector arithmetic (vector_ops.h), regularizer rows (regularizer.h).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "infer/vector_ops.h"
+#include "raster/render.h"
+
+namespace pem::infer {
+
+struct CsrMatrix {
+    int64_t rows = 0, cols = 0;
+    std::vector<int64_t> rowPtr{0};  // rows + 1 entries
+    std::vector<uint32_t> col;
+    std::vector<double> val;
+
+    int64_t NonZeros() const { return static_cast<int64_t>(val.size()); }
+    // Appends one row (entries in the given order).
+    void AddRow(const std::vector<uint32_t>& rowCols, const std::vector<double>& rowVals);
+};
+
+// The matrix part of raster's RenderingMatrix (offset and rendered are not copied).
+CsrMatrix CsrFromRendering(const raster::RenderingMatrix& a);
+
+// The transpose; row j lists the entries of column j in increasing row order.
+CsrMatrix Transpose(const CsrMatrix& a);
+
+// y = A x (y resized to a.rows).
+void Multiply(const CsrMatrix& a, const Vector& x, Vector* y, int threads);
+
+// A block of rows for StackRows: every row r of `matrix` scaled by weight * rowWeight[r]
+// (rowWeight empty = 1). Use weight = sqrt(lambda) and rowWeight = sqrt(confidence).
+struct RowBlock {
+    const CsrMatrix* matrix = nullptr;
+    double weight = 1.0;
+    const Vector* rowWeight = nullptr;
+};
+
+// [w0 W0 B0; w1 W1 B1; ...]: all blocks have the same column count.
+CsrMatrix StackRows(const std::vector<RowBlock>& blocks);
+
+// [B0 B1 ...]: all blocks have the same row count; columns of block k follow those of k-1.
+CsrMatrix StackColumns(const std::vector<const CsrMatrix*>& blocks);
+
+// Squared Euclidean norm of every column (from the transpose, rows in parallel).
+Vector ColumnSquaredNorms(const CsrMatrix& transpose, int threads);
+
+// True when every entry (r, c) has r % 4 == c % 4: the channels of the system decouple, which
+// the per-channel solvers require.
+bool IsChannelDiagonal(const CsrMatrix& a);
+
+// A matrix with its transpose, for the solvers.
+class SparseOperator {
+public:
+    SparseOperator() = default;
+    explicit SparseOperator(CsrMatrix a);
+    const CsrMatrix& A() const { return a_; }
+    const CsrMatrix& At() const { return at_; }
+    int64_t Rows() const { return a_.rows; }
+    int64_t Cols() const { return a_.cols; }
+    void Apply(const Vector& x, Vector* y, int threads) const { Multiply(a_, x, y, threads); }
+    void ApplyTranspose(const Vector& y, Vector* x, int threads) const {
+        Multiply(at_, y, x, threads);
+    }
+
+private:
+    CsrMatrix a_, at_;
+};
+
+}  // namespace pem::infer

@@ -1,0 +1,129 @@
+// SPDX-License-Identifier: MIT
+// regularizer_test.cpp — the cube surface grid (every texel has 4 neighbours, neighbours are
+// adjacent on the sphere of directions, the sampler's bilinear footprints are connected in it),
+// pyramid and prior rows, channel interleaving.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <glm/glm.hpp>
+#include <map>
+#include <set>
+
+#include "infer/regularizer.h"
+#include "raster/render.h"
+#include "tests/infer/infer_frames.h"
+
+namespace pem::infer {
+namespace {
+
+// Direction of the centre of texel (i, j) of `face` (GL table 8.19 inverted), normalized.
+glm::dvec3 CentreDirection(int face, int i, int j, int n) {
+    const double sc = 2.0 * (i + 0.5) / n - 1.0, tc = 2.0 * (j + 0.5) / n - 1.0;
+    const glm::dvec3 d[6] = {{1, -tc, -sc}, {-1, -tc, sc}, {sc, 1, tc},
+                             {sc, -1, -tc}, {sc, -tc, 1}, {-sc, -tc, -1}};
+    return glm::normalize(d[face]);
+}
+
+TEST(Regularizer, EveryTexelHasFourNeighbours) {
+    for (int n : {1, 2, 4, 16}) {
+        CubeLayout layout{0, n, 1};
+        const auto pairs = NeighbourPairs(layout, 0);
+        EXPECT_EQ(pairs.size(), static_cast<size_t>(12 * n * n)) << n;
+        std::map<uint32_t, int> degree;
+        for (const auto& [a, b] : pairs) {
+            ++degree[a];
+            ++degree[b];
+        }
+        ASSERT_EQ(degree.size(), static_cast<size_t>(6 * n * n));
+        for (const auto& [t, d] : degree) EXPECT_EQ(d, 4) << "n " << n << " texel " << t;
+    }
+}
+
+TEST(Regularizer, NeighboursAreAdjacentDirections) {
+    for (int n : {2, 8, 32}) {
+        // Neighbouring centres are at most ~1.5 texel widths apart on the cube (angle at a
+        // face centre: 2/n radians per texel; at a seam the two centres are one texel apart).
+        const double maxAngle = 1.6 * 2.0 / n;
+        for (int f = 0; f < 6; ++f)
+            for (int j = 0; j < n; ++j)
+                for (int i = 0; i < n; ++i)
+                    for (Edge e : {Edge::Left, Edge::Right, Edge::Up, Edge::Down}) {
+                        const FaceTexel nb = Neighbour({f, i, j}, e, n);
+                        const double angle = std::acos(std::min(1.0, glm::dot(CentreDirection(f, i, j, n),
+                                                                              CentreDirection(nb.face, nb.i, nb.j, n))));
+                        ASSERT_LT(angle, maxAngle) << "n " << n << " face " << f << " (" << i << "," << j << ")";
+                        ASSERT_GT(angle, 0.1 / n);
+                    }
+    }
+}
+
+// The sampler's taps at one level (bilinear 2x2, or 3 texels at a cube corner) must be connected
+// through neighbour pairs: the seam table of infer agrees with raster's sampler.
+TEST(Regularizer, SamplerFootprintsAreConnected) {
+    test::SphereSpec spec;
+    spec.cubeSize = 8;
+    spec.width = spec.height = 64;
+    const raster::Frame frame = test::RandomSphere(spec);
+    raster::RenderOptions opt;
+    opt.profile = raster::Profile::Linear;
+    const raster::RenderingMatrix a = raster::BuildRenderingMatrix(raster::PreparedFrame(frame), opt);
+    const CubeLayout layout{0, 8, frame.textures[0].NumLevels()};
+    std::set<std::pair<uint32_t, uint32_t>> pairs;
+    for (int l = 0; l < layout.levels; ++l)
+        for (const auto& p : NeighbourPairs(layout, l)) pairs.insert(p);
+    int checked = 0, seamRows = 0;
+    for (int64_t r = 0; r < a.rows; r += 4) {
+        // Group the row's texels by level.
+        std::map<int, std::vector<uint32_t>> byLevel;
+        for (int64_t k = a.rowPtr[static_cast<size_t>(r)]; k < a.rowPtr[static_cast<size_t>(r) + 1]; ++k) {
+            const uint32_t t = a.col[static_cast<size_t>(k)] / 4;
+            int l = 0;
+            while (l + 1 < layout.levels && t >= layout.LevelBase(l + 1)) ++l;
+            byLevel[l].push_back(t);
+        }
+        for (auto& [l, texels] : byLevel) {
+            std::sort(texels.begin(), texels.end());
+            texels.erase(std::unique(texels.begin(), texels.end()), texels.end());
+            // Connectivity by flood fill over the pairs.
+            std::set<uint32_t> seen{texels[0]};
+            for (bool grew = true; grew;) {
+                grew = false;
+                for (uint32_t a1 : texels)
+                    for (uint32_t b1 : texels)
+                        if (seen.count(a1) && !seen.count(b1) && pairs.count({std::min(a1, b1), std::max(a1, b1)})) {
+                            seen.insert(b1);
+                            grew = true;
+                        }
+            }
+            ASSERT_EQ(seen.size(), texels.size()) << "row " << r << " level " << l;
+            const int n = layout.LevelSize(l);
+            const uint32_t faceOf0 = (texels[0] - layout.LevelBase(l)) / static_cast<uint32_t>(n * n);
+            for (uint32_t t : texels) seamRows += (t - layout.LevelBase(l)) / static_cast<uint32_t>(n * n) != faceOf0;
+            ++checked;
+        }
+    }
+    EXPECT_GT(checked, 1000);
+    EXPECT_GT(seamRows, 10);  // footprints that straddle a seam were among them
+}
+
+TEST(Regularizer, RowsPerChannel) {
+    const CubeLayout layout{0, 4, 3};  // 4x4, 2x2, 1x1
+    const int64_t cols = 4 * layout.TexelCount();
+    const CsrMatrix smooth = SmoothnessRows(layout, cols), pyr = PyramidRows(layout, cols),
+                    prior = PriorRows(layout, cols);
+    EXPECT_EQ(smooth.rows, 4 * 12 * (16 + 4 + 1));
+    EXPECT_EQ(pyr.rows, 4 * 6 * (4 + 1));
+    EXPECT_EQ(prior.rows, cols);
+    EXPECT_TRUE(IsChannelDiagonal(smooth));
+    EXPECT_TRUE(IsChannelDiagonal(pyr));
+    EXPECT_TRUE(IsChannelDiagonal(prior));
+    // Constants are in the null space of L and P; a coarse texel equal to its children's mean too.
+    Vector x(static_cast<size_t>(cols), 0.7), y;
+    Multiply(smooth, x, &y, 1);
+    for (double v : y) EXPECT_EQ(v, 0.0);
+    Multiply(pyr, x, &y, 1);
+    for (double v : y) EXPECT_NEAR(v, 0.0, 1e-15);
+}
+
+}  // namespace
+}  // namespace pem::infer
