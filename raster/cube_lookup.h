@@ -7,7 +7,7 @@
 //  - sc, tc follow GL table 8.19 by flipping sign bits; s = sc * |0.5 / ma| + 0.5.
 //  - With derivatives: ds/dx = (dsc/dx - (dma/dx * (1/ma)) * sc) * (0.5 * (1/ma)), ma signed,
 //    from fine quad differences of the direction (the quotient rule on the pixel's own face).
-// Not here: LOD (lod.h), filtering (sampler.cpp).
+// Not here: LOD (lod.h), filtering (sample_*_impl.h). Implemented in cube_lookup_impl.h.
 #pragma once
 
 #include <array>

@@ -7,7 +7,8 @@
 //  then min(lambda, maxLod) and max(lambda, minLod) when the GL state asks for them, magnified
 //  when lambda <= 0. MIP linear: floor/fraction, levels clamped to [0, last] with the fraction
 //  zeroed at the ends; MIP nearest: round half away from zero (see LevelsFor).
-// Not here: derivatives (cube_lookup.h for cubes, sampler.cpp for 2D).
+// Not here: derivatives (cube_lookup.h for cubes, sampler_impl.h for 2D). Implemented in
+// lod_impl.h.
 #pragma once
 
 #include "raster/frame.h"

@@ -18,6 +18,70 @@
 namespace pem::raster::isa {
 namespace {
 
+// Face selection, projection and squared scale factor of all eight lanes, as branch-free
+// loops over lanes (bit-pattern selects) so the compiler vectorises them. Per lane this is
+// exactly cube_lookup_impl.h's CubeLookup followed by llvmpipe's rho^2 (Inf/NaN -> 0); without
+// derivatives the projection uses 0.5/|ma| (0 for ma == 0) and rho^2 is 0.
+void CubeLanes(const LaneCoords& c, bool withDerivs, float n, int32_t* face, float* s, float* t,
+               float* rho2) {
+    // Directions and fine quad differences (right - left in the row, bottom - top).
+    alignas(32) float d[3][kLanes], dx[3][kLanes], dy[3][kLanes];
+    for (int k = 0; k < 3; ++k)
+        for (int l = 0; l < kLanes; ++l) d[k][l] = c.c[l][k];
+    for (int k = 0; k < 3; ++k)
+        for (int l = 0; l < kLanes; ++l) {
+            const int q = l & ~3, p = l & 3, left = q + (p & 2), top = q + (p & 1);
+            dx[k][l] = withDerivs ? d[k][left + 1] - d[k][left] : 0.0f;
+            dy[k][l] = withDerivs ? d[k][top + 2] - d[k][top] : 0.0f;
+        }
+    for (int l = 0; l < kLanes; ++l) {
+        const float x = d[0][l], y = d[1][l], z = d[2][l];
+        const float as = std::fabs(x), at = std::fabs(y), ar = std::fabs(z);
+        const bool isZ = ar >= (as > at ? as : at);
+        const bool isX = !isZ & (as > at);
+        const bool isY = !isX & !isZ;
+        const uint32_t mX = 0u - static_cast<uint32_t>(isX), mY = 0u - static_cast<uint32_t>(isY);
+        const uint32_t mZ = 0u - static_cast<uint32_t>(isZ);
+        auto pick = [&](uint32_t bx, uint32_t by, uint32_t bz) {
+            return BitsFloat((bx & mX) | (by & mY) | (bz & mZ));
+        };
+        const uint32_t neg = 0x80000000u;
+        const float ma = pick(FloatBits(x), FloatBits(y), FloatBits(z));
+        const uint32_t sign = FloatBits(ma) & neg;
+        face[l] = static_cast<int32_t>((4u & mZ) | (2u & mY)) + static_cast<int32_t>(sign >> 31);
+        // (sc, tc): X: (-z ^ sign, -y); Y: (x, z ^ sign); Z: (x ^ sign, -y).
+        auto minorS = [&](float vx, float vz) {
+            return pick(FloatBits(vz) ^ neg ^ sign, FloatBits(vx), FloatBits(vx) ^ sign);
+        };
+        auto minorT = [&](float vy, float vz) {
+            return pick(FloatBits(vy) ^ neg, FloatBits(vz) ^ sign, FloatBits(vy) ^ neg);
+        };
+        const float sc = minorS(x, z), tc = minorT(y, z);
+        // With derivatives: the quotient rule through 1/ma (signed); the projection uses
+        // |0.5 * (1/ma)|, which equals 0.5/|ma| except for ma == 0 (then NaN, as llvmpipe).
+        const float scdx = minorS(dx[0][l], dx[2][l]), tcdx = minorT(dx[1][l], dx[2][l]);
+        const float scdy = minorS(dy[0][l], dy[2][l]), tcdy = minorT(dy[1][l], dy[2][l]);
+        const float madx = pick(FloatBits(dx[0][l]), FloatBits(dx[1][l]), FloatBits(dx[2][l]));
+        const float mady = pick(FloatBits(dy[0][l]), FloatBits(dy[1][l]), FloatBits(dy[2][l]));
+        const float ima = 1.0f / ma;
+        const float imaHalf = 0.5f * ima;
+        const float qx = madx * ima, qy = mady * ima;
+        const float xs = n * ((scdx - qx * sc) * imaHalf), xt = n * ((tcdx - qx * tc) * imaHalf);
+        const float ys = n * ((scdy - qy * sc) * imaHalf), yt = n * ((tcdy - qy * tc) * imaHalf);
+        const float rx = xs * xs + xt * xt, ry = ys * ys + yt * yt;
+        const float rho = rx > ry ? rx : ry;
+        const uint32_t rb = FloatBits(rho);
+        const uint32_t finite = 0u - static_cast<uint32_t>((rb & 0x7f800000u) != 0x7f800000u);
+        // Without derivatives: 0.5/|ma|, guarded against 0.
+        const float am = std::fabs(ma);
+        const float plain = 0.5f / (am > 0.0f ? am : 1.0f);
+        const float imaHalfPos = withDerivs ? std::fabs(imaHalf) : (am > 0.0f ? plain : 0.0f);
+        rho2[l] = withDerivs ? BitsFloat(rb & finite) : 0.0f;
+        s[l] = sc * imaHalfPos + 0.5f;
+        t[l] = tc * imaHalfPos + 0.5f;
+    }
+}
+
 // True when SampleFastSeamless handles this sampler (and the caller wants no taps).
 bool FastSeamlessApplies(const Texture& t, const PipeLodState& st, const RenderOptions& o) {
     const SamplerState& s = t.sampler;
@@ -41,62 +105,10 @@ void SampleFastSeamless(const PreparedFrame& frame, int textureIndex, const Lane
     const int last = tex.NumLevels() - 1;
     const float n = static_cast<float>(tex.width);
 
-    // Directions and fine quad differences.
-    alignas(32) float d[3][kLanes], dx[3][kLanes], dy[3][kLanes];
-    for (int k = 0; k < 3; ++k)
-        for (int l = 0; l < kLanes; ++l) d[k][l] = coords.c[l][k];
-    for (int k = 0; k < 3; ++k)
-        for (int l = 0; l < kLanes; ++l) {
-            const int q = l & ~3, p = l & 3, left = q + (p & 2), top = q + (p & 1);
-            dx[k][l] = d[k][left + 1] - d[k][left];
-            dy[k][l] = d[k][top + 2] - d[k][top];
-        }
-
-    // Face, projection, rho^2 and LOD per lane.
+    // Face, projection and rho^2 per lane, then LOD.
     alignas(32) int32_t face[kLanes], level0[kLanes], level1[kLanes];
     alignas(32) float s[kLanes], t[kLanes], frac[kLanes], rho2[kLanes];
-    for (int l = 0; l < kLanes; ++l) {
-        const float x = d[0][l], y = d[1][l], z = d[2][l];
-        const float as = std::fabs(x), at = std::fabs(y), ar = std::fabs(z);
-        const bool isZ = ar >= (as > at ? as : at);
-        const bool isX = !isZ & (as > at);
-        const bool isY = !isX & !isZ;
-        // Branch-free selects on bit patterns (masks all-ones or zero), so the loop vectorises.
-        const uint32_t mX = 0u - static_cast<uint32_t>(isX), mY = 0u - static_cast<uint32_t>(isY);
-        const uint32_t mZ = 0u - static_cast<uint32_t>(isZ);
-        auto pick = [&](uint32_t bx, uint32_t by, uint32_t bz) {
-            return BitsFloat((bx & mX) | (by & mY) | (bz & mZ));
-        };
-        const uint32_t neg = 0x80000000u;
-        const float ma = pick(FloatBits(x), FloatBits(y), FloatBits(z));
-        const uint32_t sign = FloatBits(ma) & neg;
-        face[l] = static_cast<int32_t>((4u & mZ) | (2u & mY)) + static_cast<int32_t>(sign >> 31);
-        // (sc, tc): X: (-z ^ sign, -y); Y: (x, z ^ sign); Z: (x ^ sign, -y).
-        auto minorS = [&](float vx, float vz) {
-            return pick(FloatBits(vz) ^ neg ^ sign, FloatBits(vx), FloatBits(vx) ^ sign);
-        };
-        auto minorT = [&](float vy, float vz) {
-            return pick(FloatBits(vy) ^ neg, FloatBits(vz) ^ sign, FloatBits(vy) ^ neg);
-        };
-        const float sc = minorS(x, z), tc = minorT(y, z);
-        const float scdx = minorS(dx[0][l], dx[2][l]), tcdx = minorT(dx[1][l], dx[2][l]);
-        const float scdy = minorS(dy[0][l], dy[2][l]), tcdy = minorT(dy[1][l], dy[2][l]);
-        const float madx = pick(FloatBits(dx[0][l]), FloatBits(dx[1][l]), FloatBits(dx[2][l]));
-        const float mady = pick(FloatBits(dy[0][l]), FloatBits(dy[1][l]), FloatBits(dy[2][l]));
-        const float ima = 1.0f / ma;
-        const float imaHalf = 0.5f * ima;
-        const float imaHalfPos = std::fabs(imaHalf);
-        const float qx = madx * ima, qy = mady * ima;
-        const float xs = n * ((scdx - qx * sc) * imaHalf), xt = n * ((tcdx - qx * tc) * imaHalf);
-        const float ys = n * ((scdy - qy * sc) * imaHalf), yt = n * ((tcdy - qy * tc) * imaHalf);
-        const float rx = xs * xs + xt * xt, ry = ys * ys + yt * yt;
-        const float rho = rx > ry ? rx : ry;
-        const uint32_t rb = FloatBits(rho);
-        const uint32_t finite = 0u - static_cast<uint32_t>((rb & 0x7f800000u) != 0x7f800000u);
-        rho2[l] = BitsFloat(rb & finite);  // Inf/NaN -> 0
-        s[l] = sc * imaHalfPos + 0.5f;
-        t[l] = tc * imaHalfPos + 0.5f;
-    }
+    CubeLanes(coords, true, n, face, s, t, rho2);
     // lambda = 0.5 * FastLog2(rho^2) (+ bias, clamps), then floor / fraction / levels.
     alignas(32) float lambda[kLanes];
     for (int l = 0; l < kLanes; ++l) {

@@ -33,65 +33,6 @@ bool UsesAosPath(const Texture& t) {
     return cube || (simple(s.wrapS) && simple(s.wrapT));
 }
 
-// Face selection, projection and squared scale factor of all eight lanes, written as
-// branch-free loops over lanes (structure of arrays) so the compiler can vectorise them; the
-// per-lane arithmetic is exactly cube_lookup_impl.h's CubeLookup followed by llvmpipe's rho^2.
-void CubeLanes(const LaneCoords& c, bool withDerivs, float n, LaneSample* ls, float* rhoOut) {
-    alignas(32) float d[3][kLanes], dx[3][kLanes], dy[3][kLanes];
-    for (int k = 0; k < 3; ++k)
-        for (int l = 0; l < kLanes; ++l) d[k][l] = c.c[l][k];
-    // Fine quad differences: ddx = right - left in the lane's row, ddy = bottom - top.
-    for (int k = 0; k < 3; ++k)
-        for (int l = 0; l < kLanes; ++l) {
-            const int q = l & ~3, p = l & 3;
-            const int left = q + (p & 2), top = q + (p & 1);
-            dx[k][l] = d[k][left + 1] - d[k][left];
-            dy[k][l] = d[k][top + 2] - d[k][top];
-        }
-    for (int l = 0; l < kLanes; ++l) {
-        const float x = d[0][l], y = d[1][l], z = d[2][l];
-        const float as = std::fabs(x), at = std::fabs(y), ar = std::fabs(z);
-        const bool xGt = as > at;
-        const bool zGe = ar >= (as > at ? as : at);
-        const int axis = zGe ? 2 : (xGt ? 0 : 1);
-        const float ma = zGe ? z : (xGt ? x : y);
-        const uint32_t sign = FloatBits(ma) & 0x80000000u;
-        ls->face[l] = 2 * axis + static_cast<int>(sign >> 31);
-        // (sc, tc): X: (-z ^ sign, -y); Y: (x, z ^ sign); Z: (x ^ sign, -y).
-        auto minor = [&](const float (*v)[kLanes], float* sc, float* tc) {
-            const float vx = v[0][l], vy = v[1][l], vz = v[2][l];
-            *sc = axis == 0 ? BitsFloat(FloatBits(vz) ^ 0x80000000u ^ sign)
-                            : (axis == 1 ? vx : BitsFloat(FloatBits(vx) ^ sign));
-            *tc = axis == 1 ? BitsFloat(FloatBits(vz) ^ sign) : BitsFloat(FloatBits(vy) ^ 0x80000000u);
-        };
-        float sc, tc;
-        minor(d, &sc, &tc);
-        float imaHalfPos, rho = 0.0f;
-        if (withDerivs) {
-            const float ima = 1.0f / ma;
-            const float imaHalf = 0.5f * ima;
-            imaHalfPos = std::fabs(imaHalf);
-            float scdx, tcdx, scdy, tcdy;
-            minor(dx, &scdx, &tcdx);
-            minor(dy, &scdy, &tcdy);
-            const float madx = axis == 0 ? dx[0][l] : (axis == 1 ? dx[1][l] : dx[2][l]);
-            const float mady = axis == 0 ? dy[0][l] : (axis == 1 ? dy[1][l] : dy[2][l]);
-            const float qx = madx * ima, qy = mady * ima;
-            const float xs = n * ((scdx - qx * sc) * imaHalf), xt = n * ((tcdx - qx * tc) * imaHalf);
-            const float ys = n * ((scdy - qy * sc) * imaHalf), yt = n * ((tcdy - qy * tc) * imaHalf);
-            const float rx = xs * xs + xt * xt, ry = ys * ys + yt * yt;
-            rho = rx > ry ? rx : ry;  // maxps
-            rho = std::isfinite(rho) ? rho : 0.0f;
-        } else {
-            const float am = std::fabs(ma);
-            imaHalfPos = am > 0.0f ? 0.5f / am : 0.0f;
-        }
-        ls->s[l] = sc * imaHalfPos + 0.5f;
-        ls->t[l] = tc * imaHalfPos + 0.5f;
-        rhoOut[l] = rho;
-    }
-}
-
 void SampleLanes(const PreparedFrame& frame, int textureIndex, const RenderOptions& options,
                  const LaneCoords& coords, std::array<RgbaF, kLanes>* colour,
                  std::array<PixelTaps, kLanes>* taps, unsigned live) {
@@ -112,8 +53,14 @@ void SampleLanes(const PreparedFrame& frame, int textureIndex, const RenderOptio
     ls.live = live;
     if (tex.kind == TextureKind::Cube) {
         const bool withDerivs = needLod && !lodState.minMaxEqual;
-        alignas(32) float rho[kLanes];
-        CubeLanes(coords, withDerivs, static_cast<float>(tex.width), &ls, rho);
+        alignas(32) float rho[kLanes], s0[kLanes], t0[kLanes];
+        alignas(32) int32_t face[kLanes];
+        CubeLanes(coords, withDerivs, static_cast<float>(tex.width), face, s0, t0, rho);
+        for (int l = 0; l < kLanes; ++l) {
+            ls.face[l] = face[l];
+            ls.s[l] = s0[l];
+            ls.t[l] = t0[l];
+        }
         if (needLod) {
             for (int l = 0; l < kLanes; ++l)
                 ls.lod[l] = isa::SelectLod(rho[l], lodState, s.mipFilter, tex.NumLevels(), exact);
