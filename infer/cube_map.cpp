@@ -47,7 +47,8 @@ raster::Texture ToTexture8(const CubeMapF& map, const raster::SamplerState& samp
 }
 
 CubeMapF FromTexture8(const raster::Texture& texture) {
-    if (texture.kind != raster::TextureKind::Cube) throw std::invalid_argument("FromTexture8: not a cube");
+    if (texture.kind != raster::TextureKind::Cube)
+        throw std::invalid_argument("FromTexture8: not a cube");
     CubeMapF map;
     map.size = texture.width;
     for (const auto& level : texture.levels) {

@@ -28,12 +28,18 @@ constexpr int kTileSize = 32;
 Imath::V3f GlDirection(int face, double s, double t) {
     const float sc = static_cast<float>(2.0 * s - 1.0), tc = static_cast<float>(2.0 * t - 1.0);
     switch (face) {
-        case 0: return {1.0f, -tc, -sc};
-        case 1: return {-1.0f, -tc, sc};
-        case 2: return {sc, 1.0f, tc};
-        case 3: return {sc, -1.0f, -tc};
-        case 4: return {sc, -tc, 1.0f};
-        default: return {-sc, -tc, -1.0f};
+        case 0:
+            return {1.0f, -tc, -sc};
+        case 1:
+            return {-1.0f, -tc, sc};
+        case 2:
+            return {sc, 1.0f, tc};
+        case 3:
+            return {sc, -1.0f, -tc};
+        case 4:
+            return {sc, -tc, 1.0f};
+        default:
+            return {-sc, -tc, -1.0f};
     }
 }
 
@@ -62,7 +68,8 @@ std::array<FaceTransform, 6> DeriveFaceTransforms() {
                 for (int i = 0; i < n && ok; ++i) {
                     Imf::CubeMapFace face;
                     Imath::V2f pif;
-                    Imf::CubeMap::faceAndPixelPosition(GlDirection(f, (i + 0.5) / n, (j + 0.5) / n), dw, face, pif);
+                    Imf::CubeMap::faceAndPixelPosition(GlDirection(f, (i + 0.5) / n, (j + 0.5) / n),
+                                                       dw, face, pif);
                     const Imath::V2f pos = Imf::CubeMap::pixelPosition(face, dw, pif);
                     const Imath::Box2i fw = Imf::CubeMap::dataWindowForFace(face, dw);
                     const ExrPixel p = tr.Apply(i, j, n);
@@ -75,7 +82,8 @@ std::array<FaceTransform, 6> DeriveFaceTransforms() {
                 found = true;
             }
         }
-        if (!found) throw std::logic_error("pem_file: no face transform matches OpenEXR's cube layout");
+        if (!found)
+            throw std::logic_error("pem_file: no face transform matches OpenEXR's cube layout");
     }
     return out;
 }
@@ -111,7 +119,9 @@ std::vector<float> LevelImage(const CubeMapF& map, int l, int w, int h,
             for (int i = 0; i < n; ++i) {
                 const ExrPixel p = ExrPixelOf(f, i, j, n);
                 const size_t src = static_cast<size_t>(((f * n + j) * n + i) * kChannels);
-                const size_t dst = (static_cast<size_t>(p.y) * static_cast<size_t>(w) + static_cast<size_t>(p.x)) * kChannels;
+                const size_t dst =
+                    (static_cast<size_t>(p.y) * static_cast<size_t>(w) + static_cast<size_t>(p.x)) *
+                    kChannels;
                 for (size_t c = 0; c < kChannels; ++c) px[dst + c] = level[src + c];
             }
     return px;
@@ -123,7 +133,8 @@ Imf::FrameBuffer RgbaFrameBuffer(std::vector<float>* px, const Imath::Box2i& dw)
     const size_t xStride = kChannels * sizeof(float), yStride = xStride * w;
     // OpenEXR addresses pixel (x, y) at base + x * xStride + y * yStride.
     char* origin = reinterpret_cast<char*>(px->data()) -
-                   static_cast<std::ptrdiff_t>(static_cast<size_t>(dw.min.x) * xStride + static_cast<size_t>(dw.min.y) * yStride);
+                   static_cast<std::ptrdiff_t>(static_cast<size_t>(dw.min.x) * xStride +
+                                               static_cast<size_t>(dw.min.y) * yStride);
     Imf::FrameBuffer fb;
     for (size_t c = 0; c < kChannels; ++c)
         fb.insert(kChannelNames[c], Imf::Slice(Imf::FLOAT, origin + c * sizeof(float), xStride,
@@ -131,14 +142,17 @@ Imf::FrameBuffer RgbaFrameBuffer(std::vector<float>* px, const Imath::Box2i& dw)
     return fb;
 }
 
-bool IsPowerOfTwo(int n) { return n > 0 && (n & (n - 1)) == 0; }
+bool IsPowerOfTwo(int n) {
+    return n > 0 && (n & (n - 1)) == 0;
+}
 
 void CheckWritable(const CubeMapF& map) {
     if (!IsPowerOfTwo(map.size) || map.levels.empty())
         throw std::invalid_argument("WriteCubeMapExr: size must be a power of two with >= 1 level");
     for (int l = 0; l < map.NumLevels(); ++l) {
         const size_t n = static_cast<size_t>(map.LevelSize(l));
-        if (map.levels[static_cast<size_t>(l)].size() != 6 * n * n * kChannels || (l > 0 && n == 1 && map.LevelSize(l - 1) == 1))
+        if (map.levels[static_cast<size_t>(l)].size() != 6 * n * n * kChannels ||
+            (l > 0 && n == 1 && map.LevelSize(l - 1) == 1))
             throw std::invalid_argument("WriteCubeMapExr: level sizes differ from the cube chain");
     }
 }
@@ -147,7 +161,8 @@ void WriteExr(const CubeMapF& map, const std::string& path) {
     // Header: N x 6N, float RGBA, cube envmap, tiled with every ROUND_DOWN MIP level.
     Imf::Header header(map.size, 6 * map.size);
     for (const char* name : kChannelNames) header.channels().insert(name, Imf::Channel(Imf::FLOAT));
-    header.setTileDescription(Imf::TileDescription(kTileSize, kTileSize, Imf::MIPMAP_LEVELS, Imf::ROUND_DOWN));
+    header.setTileDescription(
+        Imf::TileDescription(kTileSize, kTileSize, Imf::MIPMAP_LEVELS, Imf::ROUND_DOWN));
     header.compression() = Imf::ZIP_COMPRESSION;
     Imf::addEnvmap(header, Imf::ENVMAP_CUBE);
     header.insert(kLevelsAttribute, Imf::IntAttribute(map.NumLevels()));
@@ -156,7 +171,8 @@ void WriteExr(const CubeMapF& map, const std::string& path) {
     const std::array<float, kChannels> fill = CoarsestMean(map);
     for (int l = 0; l < out.numLevels(); ++l) {
         const Imath::Box2i dw = out.dataWindowForLevel(l);
-        std::vector<float> px = LevelImage(map, l, dw.max.x - dw.min.x + 1, dw.max.y - dw.min.y + 1, fill);
+        std::vector<float> px =
+            LevelImage(map, l, dw.max.x - dw.min.x + 1, dw.max.y - dw.min.y + 1, fill);
         out.setFrameBuffer(RgbaFrameBuffer(&px, dw));
         out.writeTiles(0, out.numXTiles(l) - 1, 0, out.numYTiles(l) - 1, l);
     }
@@ -223,7 +239,8 @@ CubeMapF ReadCubeMapExr(const std::string& path) {
     for (int l = 0; l < levels; ++l) {
         const Imath::Box2i ldw = in.dataWindowForLevel(l);
         const int w = ldw.max.x - ldw.min.x + 1;
-        std::vector<float> px(static_cast<size_t>(w) * static_cast<size_t>(ldw.max.y - ldw.min.y + 1) * kChannels);
+        std::vector<float> px(static_cast<size_t>(w) *
+                              static_cast<size_t>(ldw.max.y - ldw.min.y + 1) * kChannels);
         in.setFrameBuffer(RgbaFrameBuffer(&px, ldw));
         in.readTiles(0, in.numXTiles(l) - 1, 0, in.numYTiles(l) - 1, l);
         const int ln = map.LevelSize(l);
@@ -232,7 +249,9 @@ CubeMapF ReadCubeMapExr(const std::string& path) {
             for (int j = 0; j < ln; ++j)
                 for (int i = 0; i < ln; ++i) {
                     const ExrPixel p = ExrPixelOf(f, i, j, ln);
-                    const size_t src = (static_cast<size_t>(p.y) * static_cast<size_t>(w) + static_cast<size_t>(p.x)) * kChannels;
+                    const size_t src = (static_cast<size_t>(p.y) * static_cast<size_t>(w) +
+                                        static_cast<size_t>(p.x)) *
+                                       kChannels;
                     const size_t dst = static_cast<size_t>(((f * ln + j) * ln + i) * kChannels);
                     for (size_t c = 0; c < kChannels; ++c) level[dst + c] = px[src + c];
                 }

@@ -11,9 +11,9 @@ namespace pem::infer {
 namespace {
 
 struct ImageBlock {
-    CsrMatrix a;          // kept rows, local columns
-    Vector rhs;           // b - offset - known taps
-    Vector sqrtWeight;    // sqrt(w) per kept row
+    CsrMatrix a;        // kept rows, local columns
+    Vector rhs;         // b - offset - known taps
+    Vector sqrtWeight;  // sqrt(w) per kept row
     std::vector<int64_t> rowOf;
     double weightSum = 0.0;
 };
@@ -24,14 +24,18 @@ struct ImageBlock {
 ImageBlock SelectImageRows(const raster::RenderingMatrix& a, const Vector& known,
                            const CubeLayout& layout, uint32_t firstTexel, const Target& target) {
     const uint64_t colBegin = uint64_t{kChannels} * firstTexel;
-    const uint64_t colEnd = colBegin + uint64_t{kChannels} * static_cast<uint64_t>(layout.TexelCount());
+    const uint64_t colEnd =
+        colBegin + uint64_t{kChannels} * static_cast<uint64_t>(layout.TexelCount());
     auto weight = [&](int64_t r) {
-        const double w = target.confidence.empty() ? 1.0 : target.confidence[static_cast<size_t>(r)];
+        const double w =
+            target.confidence.empty() ? 1.0 : target.confidence[static_cast<size_t>(r)];
         return w > 0.0 ? w : 0.0;
     };
     auto unknownTaps = [&](int64_t r) {
-        for (int64_t k = a.rowPtr[static_cast<size_t>(r)]; k < a.rowPtr[static_cast<size_t>(r) + 1]; ++k)
-            if (a.col[static_cast<size_t>(k)] >= colBegin && a.col[static_cast<size_t>(k)] < colEnd) return true;
+        for (int64_t k = a.rowPtr[static_cast<size_t>(r)]; k < a.rowPtr[static_cast<size_t>(r) + 1];
+             ++k)
+            if (a.col[static_cast<size_t>(k)] >= colBegin && a.col[static_cast<size_t>(k)] < colEnd)
+                return true;
         return false;
     };
     ImageBlock blk;
@@ -41,14 +45,16 @@ ImageBlock SelectImageRows(const raster::RenderingMatrix& a, const Vector& known
     for (int64_t p = 0; p < a.rows / kChannels; ++p) {
         // Step 1: is the pixel in the mask?
         bool keep = false;
-        for (int64_t r = kChannels * p; r < kChannels * (p + 1); ++r) keep |= weight(r) > 0.0 && unknownTaps(r);
+        for (int64_t r = kChannels * p; r < kChannels * (p + 1); ++r)
+            keep |= weight(r) > 0.0 && unknownTaps(r);
         if (!keep) continue;
         // Step 2: its 4 rows, local columns, known taps folded into the constant.
         for (int64_t r = kChannels * p; r < kChannels * (p + 1); ++r) {
             cols.clear();
             vals.clear();
             double constant = a.offset[static_cast<size_t>(r)];
-            for (int64_t k = a.rowPtr[static_cast<size_t>(r)]; k < a.rowPtr[static_cast<size_t>(r) + 1]; ++k) {
+            for (int64_t k = a.rowPtr[static_cast<size_t>(r)];
+                 k < a.rowPtr[static_cast<size_t>(r) + 1]; ++k) {
                 const uint32_t c = a.col[static_cast<size_t>(k)];
                 const double v = a.val[static_cast<size_t>(k)];
                 if (c >= colBegin && c < colEnd) {
@@ -78,16 +84,17 @@ Channels TargetMean(const ImageBlock& blk) {
         weight[c] += w;
     }
     for (int c = 0; c < kChannels; ++c)
-        sum[static_cast<size_t>(c)] = weight[static_cast<size_t>(c)] > 0.0
-                                          ? sum[static_cast<size_t>(c)] / weight[static_cast<size_t>(c)]
-                                          : 0.0;
+        sum[static_cast<size_t>(c)] =
+            weight[static_cast<size_t>(c)] > 0.0
+                ? sum[static_cast<size_t>(c)] / weight[static_cast<size_t>(c)]
+                : 0.0;
     return sum;
 }
 
 }  // namespace
 
-LinearSystem BuildSystem(const raster::RenderingMatrix& a, const raster::Frame& frame,
-                         int texture, const Target& target, const RegularizerWeights& weights) {
+LinearSystem BuildSystem(const raster::RenderingMatrix& a, const raster::Frame& frame, int texture,
+                         const Target& target, const RegularizerWeights& weights) {
     // Check the inputs: a cube map, one target value (and confidence) per row of A.
     const raster::Texture& tex = frame.textures.at(static_cast<size_t>(texture));
     if (tex.kind != raster::TextureKind::Cube)
@@ -102,7 +109,8 @@ LinearSystem BuildSystem(const raster::RenderingMatrix& a, const raster::Frame& 
     sys.layout.size = tex.width;
     sys.layout.levels = tex.NumLevels();
     sys.globalFirstTexel = raster::TexelIndexer(frame.textures).LevelBase(texture, 0);
-    ImageBlock img = SelectImageRows(a, TexelVector(frame), sys.layout, sys.globalFirstTexel, target);
+    ImageBlock img =
+        SelectImageRows(a, TexelVector(frame), sys.layout, sys.globalFirstTexel, target);
     if (!IsChannelDiagonal(img.a))
         throw std::invalid_argument("BuildSystem: taps mix colour channels");
     sys.imageRowOf = img.rowOf;
@@ -124,7 +132,8 @@ LinearSystem BuildSystem(const raster::RenderingMatrix& a, const raster::Frame& 
     sys.imageRows = img.a.rows;
     sys.h.assign(static_cast<size_t>(k.rows), 0.0);
     for (int64_t r = 0; r < img.a.rows; ++r)
-        sys.h[static_cast<size_t>(r)] = img.sqrtWeight[static_cast<size_t>(r)] * img.rhs[static_cast<size_t>(r)];
+        sys.h[static_cast<size_t>(r)] =
+            img.sqrtWeight[static_cast<size_t>(r)] * img.rhs[static_cast<size_t>(r)];
     if (weights.prior > 0) {
         const int64_t first = k.rows - prior.rows;
         for (int64_t r = 0; r < prior.rows; ++r)

@@ -31,9 +31,9 @@ namespace pem::infer {
 
 // Regularizer weights lambda (regularizer.h states their units).
 struct RegularizerWeights {
-    double smooth = 1e-3;                 // lambda_s: neighbour differences within a level
-    double pyramid = 1e-3;                // lambda_p: coarse texel - mean of its 4 children
-    double prior = 1e-6;                  // lambda_0: pull toward the constant xbar
+    double smooth = 1e-3;                // lambda_s: neighbour differences within a level
+    double pyramid = 1e-3;               // lambda_p: coarse texel - mean of its 4 children
+    double prior = 1e-6;                 // lambda_0: pull toward the constant xbar
     std::optional<Channels> priorValue;  // xbar; default: mean of the target over the mask
 };
 
@@ -44,19 +44,19 @@ struct Target {
 };
 
 struct LinearSystem {
-    SparseOperator k;                  // the stacked K
-    Vector h;                          // the stacked right-hand side
-    int64_t imageRows = 0;             // rows [0, imageRows) of K are W^1/2 A
-    double imageWeightSum = 0.0;       // sum of w over the image rows (RMSE denominator)
-    std::vector<int64_t> imageRowOf;   // image row -> row of the rendering matrix
-    CubeLayout layout;                 // unknowns, numbered from 0
-    uint32_t globalFirstTexel = 0;     // raster's index of the unknown texture's first texel
-    Channels priorValue{};             // xbar per channel
+    SparseOperator k;                 // the stacked K
+    Vector h;                         // the stacked right-hand side
+    int64_t imageRows = 0;            // rows [0, imageRows) of K are W^1/2 A
+    double imageWeightSum = 0.0;      // sum of w over the image rows (RMSE denominator)
+    std::vector<int64_t> imageRowOf;  // image row -> row of the rendering matrix
+    CubeLayout layout;                // unknowns, numbered from 0
+    uint32_t globalFirstTexel = 0;    // raster's index of the unknown texture's first texel
+    Channels priorValue{};            // xbar per channel
     int64_t Cols() const { return k.Cols(); }
 };
 
-LinearSystem BuildSystem(const raster::RenderingMatrix& a, const raster::Frame& frame,
-                         int texture, const Target& target, const RegularizerWeights& weights);
+LinearSystem BuildSystem(const raster::RenderingMatrix& a, const raster::Frame& frame, int texture,
+                         const Target& target, const RegularizerWeights& weights);
 
 // xbar in every texel (the default starting point of the solvers).
 Vector InitialGuess(const LinearSystem& system);

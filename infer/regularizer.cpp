@@ -101,7 +101,8 @@ std::vector<std::pair<uint32_t, uint32_t>> NeighbourPairs(const CubeLayout& layo
 CsrMatrix SmoothnessRows(const CubeLayout& layout, int64_t cols) {
     CsrMatrix m = EmptyRows(layout, cols);
     for (int l = 0; l < layout.levels; ++l)
-        for (const auto& [a, b] : NeighbourPairs(layout, l)) AddChannelRows({a, b}, {1.0, -1.0}, &m);
+        for (const auto& [a, b] : NeighbourPairs(layout, l))
+            AddChannelRows({a, b}, {1.0, -1.0}, &m);
     return m;
 }
 

@@ -40,12 +40,14 @@ Scaling ColumnScaling(const LinearSystem& sys, double floorRel, int threads) {
     double floor = 1.0;
     if (!positive.empty()) {
         const size_t mid = positive.size() / 2;
-        std::nth_element(positive.begin(), positive.begin() + static_cast<std::ptrdiff_t>(mid), positive.end());
+        std::nth_element(positive.begin(), positive.begin() + static_cast<std::ptrdiff_t>(mid),
+                         positive.end());
         floor = floorRel * positive[mid];
     }
     if (!(floor > 0.0)) floor = std::numeric_limits<double>::min();
     s.d.resize(s.columnNorm2.size());
-    for (size_t j = 0; j < s.d.size(); ++j) s.d[j] = 1.0 / std::sqrt(std::max(s.columnNorm2[j], floor));
+    for (size_t j = 0; j < s.d.size(); ++j)
+        s.d[j] = 1.0 / std::sqrt(std::max(s.columnNorm2[j], floor));
     return s;
 }
 
@@ -82,7 +84,8 @@ struct CycleResult {
 
 Channels Mask(const std::array<bool, kChannels>& active) {
     Channels m{};
-    for (int c = 0; c < kChannels; ++c) m[static_cast<size_t>(c)] = active[static_cast<size_t>(c)] ? 1.0 : 0.0;
+    for (int c = 0; c < kChannels; ++c)
+        m[static_cast<size_t>(c)] = active[static_cast<size_t>(c)] ? 1.0 : 0.0;
     return m;
 }
 
@@ -276,14 +279,18 @@ CycleResult CglsCycle(const ScaledOperator& op, const Vector& r0, const Channels
 // Evaluation at a point (exact residual and projected gradient) -------------------------------
 
 struct Evaluation {
-    Vector r;             // h - K x
-    Vector g;             // D K^T r (descent direction of 1/2 |r|^2 in scaled variables)
+    Vector r;  // h - K x
+    Vector g;  // D K^T r (descent direction of 1/2 |r|^2 in scaled variables)
     Channels rNorm{}, hNorm{}, projectedGradientNorm{};
     double imageRmse = 0.0, texelMin = 0.0, texelMax = 0.0;
 };
 
-bool AtLowerBlocked(double x, double g, const Bounds& b) { return x <= b.lo && g <= 0.0; }
-bool AtUpperBlocked(double x, double g, const Bounds& b) { return x >= b.hi && g >= 0.0; }
+bool AtLowerBlocked(double x, double g, const Bounds& b) {
+    return x <= b.lo && g <= 0.0;
+}
+bool AtUpperBlocked(double x, double g, const Bounds& b) {
+    return x >= b.hi && g >= 0.0;
+}
 
 Evaluation Evaluate(const LinearSystem& sys, const Scaling& sc, const Vector& x,
                     const Bounds& bounds, int threads) {
@@ -299,7 +306,8 @@ Evaluation Evaluate(const LinearSystem& sys, const Scaling& sc, const Vector& x,
     Vector pg(x.size());
     for (size_t j = 0; j < x.size(); ++j) {
         ev.g[j] *= sc.d[j];
-        const bool blocked = AtLowerBlocked(x[j], ev.g[j], bounds) || AtUpperBlocked(x[j], ev.g[j], bounds);
+        const bool blocked =
+            AtLowerBlocked(x[j], ev.g[j], bounds) || AtUpperBlocked(x[j], ev.g[j], bounds);
         pg[j] = blocked ? 0.0 : ev.g[j];
     }
     ev.rNorm = Norm(ev.r, threads);
@@ -316,8 +324,9 @@ bool Converged(const Evaluation& ev, const Channels& normKD, double atol) {
         const bool leastSquares = ev.projectedGradientNorm[c] <= atol * normKD[c] * ev.rNorm[c];
         const bool consistent = ev.rNorm[c] <= atol * ev.hNorm[c];
         // The gradient of r = h - K x is not computable below ~eps |KD| |h|.
-        const bool roundingFloor = ev.projectedGradientNorm[c] <=
-                                   16.0 * std::numeric_limits<double>::epsilon() * normKD[c] * ev.hNorm[c];
+        const bool roundingFloor =
+            ev.projectedGradientNorm[c] <=
+            16.0 * std::numeric_limits<double>::epsilon() * normKD[c] * ev.hNorm[c];
         if (!leastSquares && !consistent && !roundingFloor) return false;
     }
     return true;
@@ -335,7 +344,8 @@ IterationRecord Record(int iteration, double seconds, const Evaluation& ev, doub
     rec.iteration = iteration;
     rec.seconds = seconds;
     rec.residualNorm = Combined(ev.rNorm);
-    rec.relativeGradient = gradientRef > 0.0 ? Combined(ev.projectedGradientNorm) / gradientRef : 0.0;
+    rec.relativeGradient =
+        gradientRef > 0.0 ? Combined(ev.projectedGradientNorm) / gradientRef : 0.0;
     rec.imageRmse = ev.imageRmse;
     rec.texelMin = ev.texelMin;
     rec.texelMax = ev.texelMax;
@@ -358,18 +368,24 @@ Vector FreeScaling(const Scaling& sc, const Evaluation& ev, const Vector& x, con
 
 const char* ToString(StopReason reason) {
     switch (reason) {
-        case StopReason::Converged: return "converged";
-        case StopReason::ResidualFloor: return "residual_floor";
-        case StopReason::MaxIterations: return "max_iterations";
-        case StopReason::Stalled: return "stalled";
-        case StopReason::Direct: return "direct";
+        case StopReason::Converged:
+            return "converged";
+        case StopReason::ResidualFloor:
+            return "residual_floor";
+        case StopReason::MaxIterations:
+            return "max_iterations";
+        case StopReason::Stalled:
+            return "stalled";
+        case StopReason::Direct:
+            return "direct";
     }
     return "?";
 }
 
 SolveResult SolveIterative(const LinearSystem& sys, const Vector& x0, const SolveOptions& opt) {
     const Clock::time_point t0 = Clock::now();
-    if (static_cast<int64_t>(x0.size()) != sys.Cols()) throw std::invalid_argument("SolveIterative: x0 size");
+    if (static_cast<int64_t>(x0.size()) != sys.Cols())
+        throw std::invalid_argument("SolveIterative: x0 size");
     SolveResult res;
     const Scaling sc = ColumnScaling(sys, opt.columnFloor, opt.threads);
     res.x = x0;
@@ -387,9 +403,18 @@ SolveResult SolveIterative(const LinearSystem& sys, const Vector& x0, const Solv
         const Evaluation ev = Evaluate(sys, sc, res.x, opt.bounds, opt.threads);
         res.log.push_back(Record(res.iterations, SecondsSince(t0), ev, gradientRef));
         const Channels normKD = FrobeniusNorm(sc, sc.d);
-        if (Converged(ev, normKD, opt.atol)) { res.stop = StopReason::Converged; break; }
-        if (opt.residualFloor > 0.0 && ev.imageRmse <= opt.residualFloor) { res.stop = StopReason::ResidualFloor; break; }
-        if (res.iterations >= opt.maxIterations) { res.stop = StopReason::MaxIterations; break; }
+        if (Converged(ev, normKD, opt.atol)) {
+            res.stop = StopReason::Converged;
+            break;
+        }
+        if (opt.residualFloor > 0.0 && ev.imageRmse <= opt.residualFloor) {
+            res.stop = StopReason::ResidualFloor;
+            break;
+        }
+        if (res.iterations >= opt.maxIterations) {
+            res.stop = StopReason::MaxIterations;
+            break;
+        }
 
         // One cycle on the free texels, logging the unclamped iterate.
         const Vector dm = FreeScaling(sc, ev, res.x, opt.bounds);
@@ -406,10 +431,10 @@ SolveResult SolveIterative(const LinearSystem& sys, const Vector& x0, const Solv
             return floorReached;
         };
         const int budget = std::min(cycleLength, opt.maxIterations - res.iterations);
-        const CycleResult cyc =
-            opt.method == Method::Lsmr
-                ? LsmrCycle(op, ev.r, budget, opt.atol, opt.threads, monitor)
-                : CglsCycle(op, ev.r, FrobeniusNorm(sc, dm), budget, opt.atol, opt.threads, monitor);
+        const CycleResult cyc = opt.method == Method::Lsmr
+                                    ? LsmrCycle(op, ev.r, budget, opt.atol, opt.threads, monitor)
+                                    : CglsCycle(op, ev.r, FrobeniusNorm(sc, dm), budget, opt.atol,
+                                                opt.threads, monitor);
         for (size_t j = 0; j < res.x.size(); ++j) res.x[j] += dm[j] * cyc.y[j];
         Clamp(opt.bounds, &res.x);
         res.iterations += cyc.iterations;
@@ -433,29 +458,34 @@ SolveResult SolveDirect(const LinearSystem& sys, const Vector& x0, double column
     std::vector<Eigen::Triplet<double>> trip;
     trip.reserve(k.val.size());
     for (int64_t r = 0; r < k.rows; ++r)
-        for (int64_t e = k.rowPtr[static_cast<size_t>(r)]; e < k.rowPtr[static_cast<size_t>(r) + 1]; ++e) {
+        for (int64_t e = k.rowPtr[static_cast<size_t>(r)]; e < k.rowPtr[static_cast<size_t>(r) + 1];
+             ++e) {
             const uint32_t c = k.col[static_cast<size_t>(e)];
-            trip.emplace_back(static_cast<int>(r), static_cast<int>(c), k.val[static_cast<size_t>(e)] * sc.d[c]);
+            trip.emplace_back(static_cast<int>(r), static_cast<int>(c),
+                              k.val[static_cast<size_t>(e)] * sc.d[c]);
         }
     Eigen::SparseMatrix<double> kd(static_cast<int>(k.rows), static_cast<int>(k.cols));
     kd.setFromTriplets(trip.begin(), trip.end());
     Vector kx0;
     sys.k.Apply(x0, &kx0, 1);
     Eigen::VectorXd r0(k.rows);
-    for (int64_t r = 0; r < k.rows; ++r) r0[r] = sys.h[static_cast<size_t>(r)] - kx0[static_cast<size_t>(r)];
+    for (int64_t r = 0; r < k.rows; ++r)
+        r0[r] = sys.h[static_cast<size_t>(r)] - kx0[static_cast<size_t>(r)];
     // Normal equations; columns without entries get a unit diagonal (their y stays 0).
     Eigen::SparseMatrix<double> normal = kd.transpose() * kd;
     Eigen::VectorXd rhs = kd.transpose() * r0;
     std::vector<Eigen::Triplet<double>> unit;
     for (size_t j = 0; j < sc.columnNorm2.size(); ++j)
-        if (sc.columnNorm2[j] == 0.0) unit.emplace_back(static_cast<int>(j), static_cast<int>(j), 1.0);
+        if (sc.columnNorm2[j] == 0.0)
+            unit.emplace_back(static_cast<int>(j), static_cast<int>(j), 1.0);
     if (!unit.empty()) {
         Eigen::SparseMatrix<double> id(normal.rows(), normal.cols());
         id.setFromTriplets(unit.begin(), unit.end());
         normal += id;
     }
     Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(normal);
-    if (ldlt.info() != Eigen::Success) throw std::runtime_error("SolveDirect: factorization failed");
+    if (ldlt.info() != Eigen::Success)
+        throw std::runtime_error("SolveDirect: factorization failed");
     const Eigen::VectorXd y = ldlt.solve(rhs);
     if (ldlt.info() != Eigen::Success) throw std::runtime_error("SolveDirect: solve failed");
     SolveResult res;

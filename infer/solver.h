@@ -15,8 +15,8 @@
 //  - Stopping, per channel, on the scaled system: |(KD)^T r| <= atol |KD| |r| (least squares) or
 //    |r| <= atol |h| (consistent), on maxIterations, or when the masked image RMSE reaches
 //    residualFloor; or when |(KD)^T r| <= 16 eps |KD| |h|, below which the gradient of
-//    r = h - K x is rounding noise. Within a cycle LSMR tests its own estimates of |KD|, |r|, |(KD)^T r|; at
-//    every restart the test is repeated exactly, with |KD| the Frobenius norm.
+//    r = h - K x is rounding noise. Within a cycle LSMR tests its own estimates of |KD|, |r|,
+//    |(KD)^T r|; at every restart the test is repeated exactly, with |KD| the Frobenius norm.
 //  - Bounds by projected restarts: from x (clamped into [lo, hi]) compute r = h - K x exactly;
 //    freeze the texels that sit on a bound with the gradient pushing outward (their D_j = 0 for
 //    this cycle); run at most restartEvery iterations on min |K D y - r|; clamp x + D y; repeat.
@@ -50,20 +50,22 @@ struct Bounds {
     static Bounds None() {
         return {-std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
     }
-    bool Active() const { return lo > -std::numeric_limits<double>::infinity() ||
-                                 hi < std::numeric_limits<double>::infinity(); }
+    bool Active() const {
+        return lo > -std::numeric_limits<double>::infinity() ||
+               hi < std::numeric_limits<double>::infinity();
+    }
 };
 
 struct SolveOptions {
     Method method = Method::Lsmr;
     Bounds bounds = Bounds::Unit();
-    int maxIterations = 500;    // iterations (one K and one K^T product each), all cycles
-    int restartEvery = 50;      // iterations per cycle (<= 0: maxIterations)
-    double atol = 1e-6;         // see the stopping rules above
-    double residualFloor = 0.0; // stop at this masked image RMSE (0: off)
-    double columnFloor = 1e-2;  // relative floor of the squared column norms
+    int maxIterations = 500;     // iterations (one K and one K^T product each), all cycles
+    int restartEvery = 50;       // iterations per cycle (<= 0: maxIterations)
+    double atol = 1e-6;          // see the stopping rules above
+    double residualFloor = 0.0;  // stop at this masked image RMSE (0: off)
+    double columnFloor = 1e-2;   // relative floor of the squared column norms
     int threads = 1;
-    int logEvery = 5;           // 0: log at restarts only
+    int logEvery = 5;  // 0: log at restarts only
 };
 
 // One line of the convergence log (inference.md §4.2).

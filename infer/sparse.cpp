@@ -35,7 +35,8 @@ CsrMatrix Transpose(const CsrMatrix& a) {
     t.val.resize(a.val.size());
     std::vector<int64_t> next(t.rowPtr.begin(), t.rowPtr.end() - 1);
     for (int64_t r = 0; r < a.rows; ++r)
-        for (int64_t k = a.rowPtr[static_cast<size_t>(r)]; k < a.rowPtr[static_cast<size_t>(r) + 1]; ++k) {
+        for (int64_t k = a.rowPtr[static_cast<size_t>(r)]; k < a.rowPtr[static_cast<size_t>(r) + 1];
+             ++k) {
             const size_t dst = static_cast<size_t>(next[a.col[static_cast<size_t>(k)]]++);
             t.col[dst] = static_cast<uint32_t>(r);
             t.val[dst] = a.val[static_cast<size_t>(k)];
@@ -67,8 +68,10 @@ CsrMatrix StackRows(const std::vector<RowBlock>& blocks) {
         if (b.rowWeight && static_cast<int64_t>(b.rowWeight->size()) != s.rows)
             throw std::invalid_argument("StackRows: row weights");
         for (int64_t r = 0; r < s.rows; ++r) {
-            const double w = b.weight * (b.rowWeight ? (*b.rowWeight)[static_cast<size_t>(r)] : 1.0);
-            for (int64_t k = s.rowPtr[static_cast<size_t>(r)]; k < s.rowPtr[static_cast<size_t>(r) + 1]; ++k) {
+            const double w =
+                b.weight * (b.rowWeight ? (*b.rowWeight)[static_cast<size_t>(r)] : 1.0);
+            for (int64_t k = s.rowPtr[static_cast<size_t>(r)];
+                 k < s.rowPtr[static_cast<size_t>(r) + 1]; ++k) {
                 m.col.push_back(s.col[static_cast<size_t>(k)]);
                 m.val.push_back(w * s.val[static_cast<size_t>(k)]);
             }
@@ -90,7 +93,8 @@ CsrMatrix StackColumns(const std::vector<const CsrMatrix*>& blocks) {
     for (int64_t r = 0; r < m.rows; ++r) {
         uint32_t base = 0;
         for (const CsrMatrix* b : blocks) {
-            for (int64_t k = b->rowPtr[static_cast<size_t>(r)]; k < b->rowPtr[static_cast<size_t>(r) + 1]; ++k) {
+            for (int64_t k = b->rowPtr[static_cast<size_t>(r)];
+                 k < b->rowPtr[static_cast<size_t>(r) + 1]; ++k) {
                 m.col.push_back(base + b->col[static_cast<size_t>(k)]);
                 m.val.push_back(b->val[static_cast<size_t>(k)]);
             }
@@ -106,7 +110,8 @@ Vector ColumnSquaredNorms(const CsrMatrix& transpose, int threads) {
     ParallelRanges(transpose.rows, threads, 4096, [&](int64_t j0, int64_t j1) {
         for (int64_t j = j0; j < j1; ++j) {
             double s = 0.0;
-            for (int64_t k = transpose.rowPtr[static_cast<size_t>(j)]; k < transpose.rowPtr[static_cast<size_t>(j) + 1]; ++k)
+            for (int64_t k = transpose.rowPtr[static_cast<size_t>(j)];
+                 k < transpose.rowPtr[static_cast<size_t>(j) + 1]; ++k)
                 s += transpose.val[static_cast<size_t>(k)] * transpose.val[static_cast<size_t>(k)];
             out[static_cast<size_t>(j)] = s;
         }
@@ -116,8 +121,10 @@ Vector ColumnSquaredNorms(const CsrMatrix& transpose, int threads) {
 
 bool IsChannelDiagonal(const CsrMatrix& a) {
     for (int64_t r = 0; r < a.rows; ++r)
-        for (int64_t k = a.rowPtr[static_cast<size_t>(r)]; k < a.rowPtr[static_cast<size_t>(r) + 1]; ++k)
-            if (static_cast<int64_t>(a.col[static_cast<size_t>(k)] % kChannels) != r % kChannels) return false;
+        for (int64_t k = a.rowPtr[static_cast<size_t>(r)]; k < a.rowPtr[static_cast<size_t>(r) + 1];
+             ++k)
+            if (static_cast<int64_t>(a.col[static_cast<size_t>(k)] % kChannels) != r % kChannels)
+                return false;
     return true;
 }
 

@@ -64,7 +64,7 @@ bool IsChannelDiagonal(const CsrMatrix& a);
 
 // A matrix with its transpose, for the solvers.
 class SparseOperator {
-public:
+  public:
     SparseOperator() = default;
     explicit SparseOperator(CsrMatrix a);
     const CsrMatrix& A() const { return a_; }
@@ -76,7 +76,7 @@ public:
         Multiply(at_, y, x, threads);
     }
 
-private:
+  private:
     CsrMatrix a_, at_;
 };
 

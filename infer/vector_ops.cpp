@@ -16,13 +16,15 @@ Channels BlockedSum(int64_t n, int threads, const Term& term) {
         for (int64_t b = b0; b < b1; ++b) {
             Channels s{};
             const int64_t end = std::min(n, (b + 1) * kReduceBlock);
-            for (int64_t k = b * kReduceBlock; k < end; ++k) s[static_cast<size_t>(k % kChannels)] += term(k);
+            for (int64_t k = b * kReduceBlock; k < end; ++k)
+                s[static_cast<size_t>(k % kChannels)] += term(k);
             partial[static_cast<size_t>(b)] = s;
         }
     });
     Channels total{};
     for (const Channels& s : partial)
-        for (int c = 0; c < kChannels; ++c) total[static_cast<size_t>(c)] += s[static_cast<size_t>(c)];
+        for (int c = 0; c < kChannels; ++c)
+            total[static_cast<size_t>(c)] += s[static_cast<size_t>(c)];
     return total;
 }
 
@@ -41,7 +43,9 @@ Channels SquaredNorm(const Vector& a, int threads) {
     });
 }
 
-Channels Norm(const Vector& a, int threads) { return Sqrt(SquaredNorm(a, threads)); }
+Channels Norm(const Vector& a, int threads) {
+    return Sqrt(SquaredNorm(a, threads));
+}
 
 void Axpy(const Channels& alpha, const Vector& x, Vector* y) {
     for (size_t k = 0; k < x.size(); ++k) (*y)[k] += alpha[k % kChannels] * x[k];

@@ -53,13 +53,15 @@ Channels SquaredNorm(const Vector& a, int threads);
 Channels Norm(const Vector& a, int threads);
 
 // Elementwise updates with per-channel coefficients (k % 4 picks the coefficient).
-void Axpy(const Channels& alpha, const Vector& x, Vector* y);            // y += alpha x
-void Xpay(const Vector& x, const Channels& alpha, Vector* y);            // y = x + alpha y
-void Scale(const Channels& alpha, Vector* y);                            // y *= alpha
-void Hadamard(const Vector& d, const Vector& x, Vector* y);               // y = d .* x
+void Axpy(const Channels& alpha, const Vector& x, Vector* y);  // y += alpha x
+void Xpay(const Vector& x, const Channels& alpha, Vector* y);  // y = x + alpha y
+void Scale(const Channels& alpha, Vector* y);                  // y *= alpha
+void Hadamard(const Vector& d, const Vector& x, Vector* y);    // y = d .* x
 
 // Helpers on Channels.
-inline double Total(const Channels& c) { return c[0] + c[1] + c[2] + c[3]; }
+inline double Total(const Channels& c) {
+    return c[0] + c[1] + c[2] + c[3];
+}
 inline Channels Sqrt(Channels c) {
     for (double& v : c) v = std::sqrt(v);
     return c;

@@ -69,7 +69,9 @@ float PlaneDistance(const glm::vec4& p, int plane) {
     return p.x * q[0] + p.y * q[1] + p.z * q[2] + p.w * q[3];
 }
 
-float Linterp(float t, float out, float in) { return out + t * (in - out); }
+float Linterp(float t, float out, float in) {
+    return out + t * (in - out);
+}
 
 // New vertex between `out` and `in` at parameter t.
 PolyVertex Interpolate(float t, const PolyVertex& out, const PolyVertex& in, const Viewport& vp,
@@ -138,7 +140,8 @@ void ClipTriangle(const ClipVertex& a, const ClipVertex& b, const ClipVertex& c,
                 const float denom = dp - dpPrev;
                 if (dp < 0.0f) {
                     if (-dp < dpPrev)
-                        outList[count++] = Interpolate(dp / denom, in[i], in[i - 1], vp, numAttribs);
+                        outList[count++] =
+                            Interpolate(dp / denom, in[i], in[i - 1], vp, numAttribs);
                     else
                         outList[count++] =
                             Interpolate(-dpPrev / denom, in[i - 1], in[i], vp, numAttribs);
@@ -147,7 +150,8 @@ void ClipTriangle(const ClipVertex& a, const ClipVertex& b, const ClipVertex& c,
                         outList[count++] =
                             Interpolate(-dpPrev / denom, in[i - 1], in[i], vp, numAttribs);
                     else
-                        outList[count++] = Interpolate(dp / denom, in[i], in[i - 1], vp, numAttribs);
+                        outList[count++] =
+                            Interpolate(dp / denom, in[i], in[i - 1], vp, numAttribs);
                 }
             }
             dpPrev = dp;

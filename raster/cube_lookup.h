@@ -17,7 +17,7 @@ namespace pem::raster {
 using Vec3f = std::array<float, 3>;
 
 struct CubeCoord {
-    int face = 0;       // 0 +X, 1 -X, 2 +Y, 3 -Y, 4 +Z, 5 -Z
+    int face = 0;        // 0 +X, 1 -X, 2 +Y, 3 -Y, 4 +Z, 5 -Z
     float s = 0, t = 0;  // face coordinates in [0, 1] for finite directions
     float dsdx = 0, dtdx = 0, dsdy = 0, dtdy = 0;  // with derivatives only
 };

@@ -2,20 +2,25 @@
 // cube_lookup_impl.h — implementation of cube_lookup.h, compiled into each fragment-stage
 // variant (fragment_base.cpp, fragment_fma.cpp; see fragment.h).
 #pragma once
-#include "raster/cube_lookup.h"
-
 #include <cmath>
 
+#include "raster/cube_lookup.h"
 #include "raster/numeric.h"
 
 namespace pem::raster::isa {
 namespace {
 
-float FlipSign(float v, uint32_t signBit) { return BitsFloat(FloatBits(v) ^ signBit); }
-float Neg(float v) { return FlipSign(v, 0x80000000u); }
+float FlipSign(float v, uint32_t signBit) {
+    return BitsFloat(FloatBits(v) ^ signBit);
+}
+float Neg(float v) {
+    return FlipSign(v, 0x80000000u);
+}
 
 // x86 maxps: the second operand when either is NaN.
-float MaxSse(float a, float b) { return a > b ? a : b; }
+float MaxSse(float a, float b) {
+    return a > b ? a : b;
+}
 
 enum Axis { kX, kY, kZ };
 
@@ -30,12 +35,20 @@ Axis MajorAxis(const Vec3f& d) {
 // Z: (s, -t) flipped by sign in s.
 void MinorCoords(Axis axis, uint32_t sign, const Vec3f& v, float* sc, float* tc) {
     switch (axis) {
-        case kX: *sc = FlipSign(Neg(v[2]), sign); *tc = Neg(v[1]); break;
-        case kY: *sc = v[0]; *tc = FlipSign(v[2], sign); break;
-        case kZ: *sc = FlipSign(v[0], sign); *tc = Neg(v[1]); break;
+        case kX:
+            *sc = FlipSign(Neg(v[2]), sign);
+            *tc = Neg(v[1]);
+            break;
+        case kY:
+            *sc = v[0];
+            *tc = FlipSign(v[2], sign);
+            break;
+        case kZ:
+            *sc = FlipSign(v[0], sign);
+            *tc = Neg(v[1]);
+            break;
     }
 }
-
 
 int CubeFace(const Vec3f& dir) {
     const Axis axis = MajorAxis(dir);

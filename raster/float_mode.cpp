@@ -11,7 +11,9 @@ namespace pem::raster {
 ScopedFlushToZero::ScopedFlushToZero() : saved_(_mm_getcsr()) {
     _mm_setcsr(static_cast<unsigned>(saved_) | 0x8040u);  // FTZ (bit 15) | DAZ (bit 6)
 }
-ScopedFlushToZero::~ScopedFlushToZero() { _mm_setcsr(static_cast<unsigned>(saved_)); }
+ScopedFlushToZero::~ScopedFlushToZero() {
+    _mm_setcsr(static_cast<unsigned>(saved_));
+}
 #elif defined(__aarch64__)
 ScopedFlushToZero::ScopedFlushToZero() {
     uint64_t fpcr;
@@ -20,7 +22,9 @@ ScopedFlushToZero::ScopedFlushToZero() {
     fpcr |= (1ull << 24);  // FZ
     __asm__ volatile("msr fpcr, %0" : : "r"(fpcr));
 }
-ScopedFlushToZero::~ScopedFlushToZero() { __asm__ volatile("msr fpcr, %0" : : "r"(saved_)); }
+ScopedFlushToZero::~ScopedFlushToZero() {
+    __asm__ volatile("msr fpcr, %0" : : "r"(saved_));
+}
 #else
 ScopedFlushToZero::ScopedFlushToZero() {}
 ScopedFlushToZero::~ScopedFlushToZero() {}

@@ -10,13 +10,13 @@
 namespace pem::raster {
 
 class ScopedFlushToZero {
-public:
+  public:
     ScopedFlushToZero();
     ~ScopedFlushToZero();
     ScopedFlushToZero(const ScopedFlushToZero&) = delete;
     ScopedFlushToZero& operator=(const ScopedFlushToZero&) = delete;
 
-private:
+  private:
     uint64_t saved_ = 0;
 };
 

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
-// fragment.h — the fragment stage (interpolation, texture sampling, shading, blending) as render.cpp
-// calls it, in two builds of the same source: a baseline x86-64/aarch64 build and, on x86-64, a
-// build for CPUs with AVX2 and FMA (std::fma and floor become single instructions instead of
-// library calls). Both give the same bits: the code only uses IEEE operations whose results do
+// fragment.h — the fragment stage (interpolation, texture sampling, shading, blending) as
+// render.cpp calls it, in two builds of the same source: a baseline x86-64/aarch64 build and, on
+// x86-64, a build for CPUs with AVX2 and FMA (std::fma and floor become single instructions instead
+// of library calls). Both give the same bits: the code only uses IEEE operations whose results do
 // not depend on the instruction set, and the compiler never contracts a*b+c (-ffp-contract=off).
 // The implementation is in shade_impl.h (and the *_impl.h headers it includes), compiled with
 // internal linkage into fragment_base.cpp and fragment_fma.cpp. PEM_ISA=base forces the baseline.
@@ -22,8 +22,8 @@ struct FragmentTarget {
     const PreparedFrame* frame;
     RenderOptions options;
     Image8* image8;
-    ImageF* imageF;           // Linear profile
-    RenderingMatrix* matrix;  // matrix mode: offsets per row
+    ImageF* imageF;                                               // Linear profile
+    RenderingMatrix* matrix;                                      // matrix mode: offsets per row
     std::vector<std::vector<std::pair<uint32_t, double>>>* rows;  // matrix mode: entries per row
 };
 
@@ -32,8 +32,7 @@ constexpr int kBandQuadRows = 4;  // rows of 2x2 quads per band (8 pixel rows)
 // Draws the triangles of one pass into the row bands owned by `worker` of `workers`: band b
 // (kBandQuadRows quad rows) belongs to worker b % workers.
 using DrawBandsFn = void (*)(const FragmentTarget& target, const Pass& pass,
-                             const std::vector<TriangleSetup>& triangles, int worker,
-                             int workers);
+                             const std::vector<TriangleSetup>& triangles, int worker, int workers);
 
 DrawBandsFn DrawBandsBase();
 DrawBandsFn DrawBandsFma();  // nullptr when not built (non-x86-64 or unoptimised builds)

@@ -9,7 +9,9 @@
 
 namespace pem::raster {
 
-DrawBandsFn DrawBandsBase() { return &isa::DrawBands; }
+DrawBandsFn DrawBandsBase() {
+    return &isa::DrawBands;
+}
 
 DrawBandsFn SelectDrawBands(const char** name) {
     const char* force = std::getenv("PEM_ISA");
@@ -31,7 +33,9 @@ DrawBandsFn SelectDrawBands(const char** name) {
 CubeCoord CubeLookup(const Vec3f& dir, const Vec3f& ddx, const Vec3f& ddy, bool withDerivatives) {
     return isa::CubeLookup(dir, ddx, ddy, withDerivatives);
 }
-int CubeFace(const Vec3f& dir) { return isa::CubeFace(dir); }
+int CubeFace(const Vec3f& dir) {
+    return isa::CubeFace(dir);
+}
 
 PipeLodState DerivePipeLodState(const SamplerState& s, int numLevels) {
     return isa::DerivePipeLodState(s, numLevels);

@@ -43,9 +43,13 @@
 namespace pem::raster {
 
 #ifdef PEM_BUILD_FMA
-DrawBandsFn DrawBandsFma() { return &isa::DrawBands; }
+DrawBandsFn DrawBandsFma() {
+    return &isa::DrawBands;
+}
 #else
-DrawBandsFn DrawBandsFma() { return nullptr; }
+DrawBandsFn DrawBandsFma() {
+    return nullptr;
+}
 #endif
 
 }  // namespace pem::raster

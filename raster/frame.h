@@ -58,8 +58,17 @@ struct Texture {
 // Blending -----------------------------------------------------------------------------------
 
 enum class BlendFactor {
-    Zero, One, SrcColor, OneMinusSrcColor, DstColor, OneMinusDstColor,
-    SrcAlpha, OneMinusSrcAlpha, DstAlpha, OneMinusDstAlpha, SrcAlphaSaturate
+    Zero,
+    One,
+    SrcColor,
+    OneMinusSrcColor,
+    DstColor,
+    OneMinusDstColor,
+    SrcAlpha,
+    OneMinusSrcAlpha,
+    DstAlpha,
+    OneMinusDstAlpha,
+    SrcAlphaSaturate
 };
 enum class BlendEquation { Add, Subtract, ReverseSubtract, Min, Max };
 

@@ -1,11 +1,10 @@
 // SPDX-License-Identifier: MIT
 // lod_impl.h — implementation of lod.h, compiled into each fragment-stage variant (fragment.h).
 #pragma once
-#include "raster/lod.h"
-
 #include <algorithm>
 #include <cmath>
 
+#include "raster/lod.h"
 #include "raster/numeric.h"
 
 namespace pem::raster::isa {
@@ -34,7 +33,8 @@ PipeLodState DerivePipeLodState(const SamplerState& s, int /*numLevels*/) {
     return st;
 }
 
-[[gnu::always_inline]] inline float LambdaFromRhoSquared(float rhoSquared, const PipeLodState& st, bool exactLog2) {
+[[gnu::always_inline]] inline float LambdaFromRhoSquared(float rhoSquared, const PipeLodState& st,
+                                                         bool exactLog2) {
     if (st.minMaxEqual) return st.minLod;
     float lambda;
     if (exactLog2)
@@ -64,8 +64,14 @@ PipeLodState DerivePipeLodState(const SamplerState& s, int /*numLevels*/) {
             float frac = lambda - fl;
             int l0 = TruncI32(fl);
             int l1 = l0 + 1;
-            if (l0 < 0) { l0 = l1 = 0; frac = 0.0f; }
-            if (l0 >= last) { l0 = l1 = last; frac = 0.0f; }
+            if (l0 < 0) {
+                l0 = l1 = 0;
+                frac = 0.0f;
+            }
+            if (l0 >= last) {
+                l0 = l1 = last;
+                frac = 0.0f;
+            }
             r.level0 = l0;
             r.level1 = l1;
             r.frac = frac;
@@ -75,11 +81,12 @@ PipeLodState DerivePipeLodState(const SamplerState& s, int /*numLevels*/) {
     return r;
 }
 
-[[gnu::always_inline]] inline LodResult SelectLod(float rhoSquared, const PipeLodState& st, MipFilter mip, int numLevels,
-                    bool exactLog2) {
+[[gnu::always_inline]] inline LodResult SelectLod(float rhoSquared, const PipeLodState& st,
+                                                  MipFilter mip, int numLevels, bool exactLog2) {
     const bool shortcut = !exactLog2 && !st.biasNonZero && !st.applyMinLod && !st.applyMaxLod &&
                           !st.minMaxEqual && mip != MipFilter::Linear;
-    if (!shortcut) return isa::LevelsFor(isa::LambdaFromRhoSquared(rhoSquared, st, exactLog2), mip, numLevels);
+    if (!shortcut)
+        return isa::LevelsFor(isa::LambdaFromRhoSquared(rhoSquared, st, exactLog2), mip, numLevels);
     LodResult r;
     r.magnify = !(rhoSquared > 1.0f);
     if (mip == MipFilter::Nearest) {

@@ -13,11 +13,17 @@
 
 namespace pem::raster {
 
-inline uint32_t FloatBits(float f) { return std::bit_cast<uint32_t>(f); }
-inline float BitsFloat(uint32_t u) { return std::bit_cast<float>(u); }
+inline uint32_t FloatBits(float f) {
+    return std::bit_cast<uint32_t>(f);
+}
+inline float BitsFloat(uint32_t u) {
+    return std::bit_cast<float>(u);
+}
 
 // Float lerp as llvmpipe's float path computes it: fmuladd(w, b - a, a), fused on FMA hosts.
-inline float LerpF(float w, float a, float b) { return std::fma(w, b - a, a); }
+inline float LerpF(float w, float a, float b) {
+    return std::fma(w, b - a, a);
+}
 
 // x86 cvtps2dq: round half to even; NaN and values outside int32 give INT32_MIN.
 inline int32_t RoundHalfEvenI32(float x) {
@@ -67,7 +73,9 @@ inline uint8_t UnormFromFloat(float x, bool halfEven) {
 }
 
 // unorm8 -> float as llvmpipe converts texels and framebuffer values: c * fl(1/255).
-inline float FloatFromUnorm8(uint8_t c) { return static_cast<float>(c) * static_cast<float>(1.0 / 255.0); }
+inline float FloatFromUnorm8(uint8_t c) {
+    return static_cast<float>(c) * static_cast<float>(1.0 / 255.0);
+}
 
 // 8-bit normalized product as llvmpipe blends: (t + (t >> 8) + 128) >> 8, t = a * b.
 inline uint8_t Mul8(uint8_t a, uint8_t b) {
@@ -88,6 +96,8 @@ inline uint8_t SatAdd8(uint8_t a, uint8_t b) {
     const int32_t s = static_cast<int32_t>(a) + b;
     return static_cast<uint8_t>(s > 255 ? 255 : s);
 }
-inline uint8_t SatSub8(uint8_t a, uint8_t b) { return static_cast<uint8_t>(a > b ? a - b : 0); }
+inline uint8_t SatSub8(uint8_t a, uint8_t b) {
+    return static_cast<uint8_t>(a > b ? a - b : 0);
+}
 
 }  // namespace pem::raster

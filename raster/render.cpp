@@ -19,7 +19,9 @@
 namespace pem::raster {
 namespace {
 
-int ColourOffset(const Pass& pass) { return 3 * pass.numUnits; }
+int ColourOffset(const Pass& pass) {
+    return 3 * pass.numUnits;
+}
 
 // Vertex fetch, clipping, viewport transform and triangle setup of one pass.
 std::vector<TriangleSetup> SetupPass(const Frame& frame, const Pass& pass, int first, int last) {
@@ -29,7 +31,8 @@ std::vector<TriangleSetup> SetupPass(const Frame& frame, const Pass& pass, int f
         ClipVertex cv{v.pos, {}};
         for (int u = 0; u < pass.numUnits; ++u)
             for (int k = 0; k < 3; ++k) cv.attr[static_cast<size_t>(3 * u + k)] = v.coord[u][k];
-        for (int k = 0; k < 4; ++k) cv.attr[static_cast<size_t>(ColourOffset(pass) + k)] = v.color[k];
+        for (int k = 0; k < 4; ++k)
+            cv.attr[static_cast<size_t>(ColourOffset(pass) + k)] = v.color[k];
         return cv;
     };
     std::vector<TriangleSetup> setups;
@@ -122,11 +125,13 @@ RenderResult Render(const PreparedFrame& prepared, const RenderOptions& options)
         for (int c = 0; c < 4; ++c) r.image8.rgba[4 * i + c] = frame.clear[c];
     if (options.profile == Profile::Linear) {
         r.imageF = {frame.width, frame.height, std::vector<float>(4 * n)};
-        for (size_t i = 0; i < 4 * n; ++i) r.imageF.rgba[i] = static_cast<float>(r.image8.rgba[i]) / 255.0f;
+        for (size_t i = 0; i < 4 * n; ++i)
+            r.imageF.rgba[i] = static_cast<float>(r.image8.rgba[i]) / 255.0f;
     }
     DrawFrame({&prepared, options, &r.image8, &r.imageF, nullptr, nullptr});
     if (options.profile == Profile::Linear)
-        for (size_t i = 0; i < 4 * n; ++i) r.image8.rgba[i] =
+        for (size_t i = 0; i < 4 * n; ++i)
+            r.image8.rgba[i] =
                 UnormFromFloat(r.imageF.rgba[i], options.rounding == UnormRounding::HalfEven);
     return r;
 }

@@ -40,18 +40,18 @@ struct RenderOptions {
 struct PreparedTexture {
     const Texture* source = nullptr;
     PipeLodState lod;  // the sampler's LOD controls as llvmpipe receives them
-    std::vector<std::vector<float>> levelsF;  // c * fl(1/255) per byte (llvmpipe's conversion)
+    std::vector<std::vector<float>> levelsF;      // c * fl(1/255) per byte (llvmpipe's conversion)
     std::vector<std::vector<float>> levelsExact;  // c / 255 in float (linear profile)
 };
 
 class PreparedFrame {
-public:
+  public:
     explicit PreparedFrame(const Frame& frame);
     const Frame& frame() const { return *frame_; }
     const PreparedTexture& texture(int i) const { return textures_[static_cast<size_t>(i)]; }
     const TexelIndexer& indexer() const { return indexer_; }
 
-private:
+  private:
     const Frame* frame_;
     std::vector<PreparedTexture> textures_;
     TexelIndexer indexer_;
@@ -76,8 +76,8 @@ struct RenderingMatrix {
     std::vector<int64_t> rowPtr;  // CSR, rows + 1 entries
     std::vector<uint32_t> col;
     std::vector<double> val;
-    std::vector<double> offset;    // constant term per row (clear colour, untextured passes)
-    std::vector<double> rendered;  // the frame as rendered, per row, in [0, 1] units
+    std::vector<double> offset;       // constant term per row (clear colour, untextured passes)
+    std::vector<double> rendered;     // the frame as rendered, per row, in [0, 1] units
     std::vector<uint16_t> fragments;  // per pixel: fragments written since the last unblended one
 };
 

@@ -174,7 +174,8 @@ void SampleFastSeamless(const PreparedFrame& frame, int textureIndex, const Lane
                 v = FilterFootprint({texels, 0}, fp[l], anyCorner, 1.0f, nullptr);
             } else {
                 const int32_t sz = size[l];
-                const float* t00 = texels + 4 * static_cast<size_t>((face[l] * sz + y0[l]) * sz + x0[l]);
+                const float* t00 =
+                    texels + 4 * static_cast<size_t>((face[l] * sz + y0[l]) * sz + x0[l]);
                 const float* t10 = t00 + 4 * static_cast<size_t>(sz);
                 if (anyCorner) {
                     Footprint f;

@@ -93,7 +93,6 @@ Rgba8 FilterLevel(const Level8& lv, Filter filter, Wrap ws, Wrap wt, float s, fl
     return out;
 }
 
-
 void FilterFixed8(const PreparedFrame& frame, const Texture& tex, const PreparedTexture& /*pt*/,
                   const LaneSample& ls, std::array<RgbaF, kLanes>* colour,
                   std::array<PixelTaps, kLanes>* taps) {
@@ -116,8 +115,8 @@ void FilterFixed8(const PreparedFrame& frame, const Texture& tex, const Prepared
         const float w1 = static_cast<float>(wl) / 256.0f;
         PixelTaps* tp = taps ? &(*taps)[l] : nullptr;
         const int level0 = mag ? 0 : lod.level0;
-        Rgba8 c = FilterLevel(level(level0), filter, ws, wt, ls.s[l], ls.t[l], ls.face[l],
-                              1.0f - w1, tp);
+        Rgba8 c =
+            FilterLevel(level(level0), filter, ws, wt, ls.s[l], ls.t[l], ls.face[l], 1.0f - w1, tp);
         if (wl > 0) {
             const Rgba8 c1 = FilterLevel(level(lod.level1), filter, ws, wt, ls.s[l], ls.t[l],
                                          ls.face[l], w1, tp);

@@ -19,8 +19,12 @@
 namespace pem::raster::isa {
 namespace {
 
-float MaxNanToOther(float v, float other) { return std::isnan(v) ? other : std::max(v, other); }
-float MinNanToOther(float v, float other) { return std::isnan(v) ? other : std::min(v, other); }
+float MaxNanToOther(float v, float other) {
+    return std::isnan(v) ? other : std::max(v, other);
+}
+float MinNanToOther(float v, float other) {
+    return std::isnan(v) ? other : std::min(v, other);
+}
 
 // gallivm's mirror: |2 * (x/2 - round_even(x/2))|, NaN -> 0.
 float Mirror(float x) {
@@ -75,9 +79,12 @@ WrapAxis WrapLinear(float coord, int len, Wrap wrap) {
 int WrapNearest(float coord, int len, Wrap wrap) {
     const float lenf = static_cast<float>(len);
     switch (wrap) {
-        case Wrap::Repeat: return FloorI32(coord * lenf) & (len - 1);
-        case Wrap::ClampToEdge: return std::clamp(TruncI32(coord * lenf), 0, len - 1);
-        case Wrap::MirroredRepeat: return std::min(TruncI32(Mirror(coord) * lenf), len - 1);
+        case Wrap::Repeat:
+            return FloorI32(coord * lenf) & (len - 1);
+        case Wrap::ClampToEdge:
+            return std::clamp(TruncI32(coord * lenf), 0, len - 1);
+        case Wrap::MirroredRepeat:
+            return std::min(TruncI32(Mirror(coord) * lenf), len - 1);
     }
     return 0;
 }
@@ -91,25 +98,29 @@ void CrossEdge(int face, int edge, int max, int* i, int* j) {
         case 0: {
             const int is[6] = {max, max, oj, max - oj, max, max};
             const int js[6] = {oj, oj, 0, max, oj, oj};
-            ni = is[face]; nj = js[face];
+            ni = is[face];
+            nj = js[face];
             break;
         }
         case 1: {
             const int is[6] = {0, 0, max - oj, oj, 0, 0};
             const int js[6] = {oj, oj, 0, max, oj, oj};
-            ni = is[face]; nj = js[face];
+            ni = is[face];
+            nj = js[face];
             break;
         }
         case 2: {
             const int is[6] = {max, 0, max - oi, oi, oi, max - oi};
             const int js[6] = {max - oi, oi, 0, max, max, 0};
-            ni = is[face]; nj = js[face];
+            ni = is[face];
+            nj = js[face];
             break;
         }
         default: {
             const int is[6] = {max, 0, oi, max - oi, oi, max - oi};
             const int js[6] = {oi, max - oi, 0, max, 0, max};
-            ni = is[face]; nj = js[face];
+            ni = is[face];
+            nj = js[face];
             break;
         }
     }
@@ -132,7 +143,9 @@ struct Footprint {
     bool nearest = false;          // one texel (index 0)
 };
 
-int32_t TexelAt(int face, int i, int j, int w, int h) { return (face * h + j) * w + i; }
+int32_t TexelAt(int face, int i, int j, int w, int h) {
+    return (face * h + j) * w + i;
+}
 
 Footprint SeamlessLinear(float s, float t, int face, int size) {
     Footprint f;
@@ -143,7 +156,7 @@ Footprint SeamlessLinear(float s, float t, int face, int size) {
     f.a = u - fu;
     f.b = v - fv;
     const int x0 = TruncI32(fu), y0 = TruncI32(fv), x1 = x0 + 1, y1 = y0 + 1, max = size - 1;
-    const bool offX0 = x0 < 0, offX1 = x1 > max, offY0 = y0 < 0, offY1 = y1 > max;
+    const bool offX0 = x0<0, offX1 = x1> max, offY0 = y0<0, offY1 = y1> max;
     const int y0c = std::max(y0, 0), y1c = std::min(y1, max);
     const int xs[4] = {x0, x1, x0, x1};
     const int ys[4] = {y0c, y0c, y1c, y1c};
@@ -206,7 +219,7 @@ std::array<float, 4> Weights(const Footprint& f) {
 
 // Filters one footprint; `weighted` selects the explicit-weight formula.
 RgbaF FilterFootprint(const LevelView& lv, const Footprint& f, bool weighted, float scale,
-             PixelTaps* taps) {
+                      PixelTaps* taps) {
     if (f.nearest) {
         if (taps) taps->Add(TexelOf(lv, f.texel[0]), scale);
         const float* p = Fetch(lv, f.texel[0]);
@@ -242,7 +255,6 @@ RgbaF FilterFootprint(const LevelView& lv, const Footprint& f, bool weighted, fl
     }
     return out;
 }
-
 
 void FilterFloat(const PreparedFrame& frame, const Texture& tex, const PreparedTexture& pt,
                  bool exactTexels, const LaneSample& ls, std::array<RgbaF, kLanes>* colour,

@@ -36,7 +36,10 @@ struct PixelTaps {
     std::array<Tap, kMaxTaps> tap;
     void Add(uint32_t texel, float weight) {
         for (int k = 0; k < count; ++k)
-            if (tap[k].texel == texel) { tap[k].weight += weight; return; }
+            if (tap[k].texel == texel) {
+                tap[k].weight += weight;
+                return;
+            }
         tap[count++] = {texel, weight};
     }
 };

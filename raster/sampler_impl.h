@@ -2,17 +2,16 @@
 // sampler_impl.h — texture lookups of eight lanes (sampler.h): derivatives, face selection, LOD,
 // then llvmpipe's float ("SoA") or 8-bit ("AoS") filtering path, whichever it would take.
 #pragma once
-#include "raster/sampler.h"
-
 #include <algorithm>
 #include <cmath>
 
 #include "raster/cube_lookup_impl.h"
 #include "raster/lod_impl.h"
 #include "raster/numeric.h"
-#include "raster/sample_fixed8_impl.h"
 #include "raster/sample_fast_impl.h"
+#include "raster/sample_fixed8_impl.h"
 #include "raster/sample_float_impl.h"
+#include "raster/sampler.h"
 #include "raster/sampler_paths.h"
 
 namespace pem::raster::isa {

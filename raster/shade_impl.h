@@ -16,7 +16,9 @@
 namespace pem::raster::isa {
 namespace {
 
-int ColourOffset(const Pass& pass) { return 3 * pass.numUnits; }
+int ColourOffset(const Pass& pass) {
+    return 3 * pass.numUnits;
+}
 
 // Per-lane attribute values of a 4x2 lane group (sampler.h's lane order), attribute-major so
 // the loops over lanes vectorise: the interpolated 1/w, one true division, each attribute
@@ -91,11 +93,18 @@ void ShadeGroup(const FragmentTarget& tg, const Pass& pass, const TriangleSetup&
             for (int c = 0; c < 4; ++c) {
                 auto& row = (*tg.rows)[4 * pixel + static_cast<size_t>(c)];
                 double& off = tg.matrix->offset[4 * pixel + static_cast<size_t>(c)];
-                if (!pass.blend.enabled) { row.clear(); off = 0.0; }
-                if (pass.numUnits == 0) { off += static_cast<double>(src[c]); continue; }
+                if (!pass.blend.enabled) {
+                    row.clear();
+                    off = 0.0;
+                }
+                if (pass.numUnits == 0) {
+                    off += static_cast<double>(src[c]);
+                    continue;
+                }
                 for (int k = 0; k < taps[l].count; ++k)
-                    row.push_back({4 * taps[l].tap[k].texel + static_cast<uint32_t>(c),
-                                   static_cast<double>(taps[l].tap[k].weight) * static_cast<double>(mod[c])});
+                    row.push_back(
+                        {4 * taps[l].tap[k].texel + static_cast<uint32_t>(c),
+                         static_cast<double>(taps[l].tap[k].weight) * static_cast<double>(mod[c])});
             }
             continue;
         }
@@ -108,7 +117,8 @@ void ShadeGroup(const FragmentTarget& tg, const Pass& pass, const TriangleSetup&
             const UnormRounding r = tg.options.rounding;
             const Rgba8 s8{ToUnorm(src[0], r), ToUnorm(src[1], r), ToUnorm(src[2], r),
                            ToUnorm(src[3], r)};
-            const Rgba8 out = pass.blend.enabled ? Blend8(pass.blend, s8, {d[0], d[1], d[2], d[3]}) : s8;
+            const Rgba8 out =
+                pass.blend.enabled ? Blend8(pass.blend, s8, {d[0], d[1], d[2], d[3]}) : s8;
             for (int c = 0; c < 4; ++c) d[c] = out[c];
         }
     }

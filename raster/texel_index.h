@@ -20,7 +20,7 @@
 namespace pem::raster {
 
 class TexelIndexer {
-public:
+  public:
     explicit TexelIndexer(const std::vector<Texture>& textures);
 
     uint32_t Index(int texture, int level, int face, int i, int j) const {
@@ -35,7 +35,7 @@ public:
     }
     uint32_t TotalTexels() const { return total_; }
 
-private:
+  private:
     struct Layout {
         int width, height;
         std::vector<uint32_t> levelBase;  // global index of each level's first texel

@@ -11,7 +11,9 @@ namespace {
 
 // Subpixel snap of one window coordinate: (v - 0.5) * 256 in float, cvtps2dq (RNE; NaN and
 // overflow give INT32_MIN).
-int32_t Snap(float v) { return RoundHalfEvenI32((v - 0.5f) * 256.0f); }
+int32_t Snap(float v) {
+    return RoundHalfEvenI32((v - 0.5f) * 256.0f);
+}
 
 struct Fixed {
     std::array<int32_t, 3> x, y;
@@ -88,8 +90,8 @@ bool SetupTriangle(const WindowVertex& in0, const WindowVertex& in1, const Windo
     out->z = plane(v[0]->z, v[1]->z, v[2]->z);
     out->numAttribs = numAttribs;
     for (int k = 0; k < numAttribs; ++k)
-        out->attr[k] = plane(v[0]->attr[k] * v[0]->oow, v[1]->attr[k] * v[1]->oow,
-                             v[2]->attr[k] * v[2]->oow);
+        out->attr[k] =
+            plane(v[0]->attr[k] * v[0]->oow, v[1]->attr[k] * v[1]->oow, v[2]->attr[k] * v[2]->oow);
     return true;
 }
 

@@ -39,9 +39,9 @@ struct Plane {
 
 struct TriangleSetup {
     std::array<Edge, 3> edge;
-    int x0, x1, y0, y1;        // pixel bounding box, inclusive, clipped to the framebuffer
-    Plane oow;                 // interpolated 1/w (llvmpipe's position.w channel)
-    Plane z;                   // window z (unused for colour, kept for depth clamp checks)
+    int x0, x1, y0, y1;  // pixel bounding box, inclusive, clipped to the framebuffer
+    Plane oow;           // interpolated 1/w (llvmpipe's position.w channel)
+    Plane z;             // window z (unused for colour, kept for depth clamp checks)
     std::array<Plane, kMaxAttribs> attr;  // premultiplied by 1/w (perspective-correct)
     int numAttribs = 0;
 };

@@ -56,8 +56,8 @@ Texture MakeTexture(TextureKind kind, int w, int h, const SamplerState& s, uint6
     Rng rng{seed};
     const int levels = Log2(std::max(w, h)) + 1;
     for (int l = 0; l < levels; ++l) {
-        std::vector<uint8_t> bytes(static_cast<size_t>(t.Faces() * t.LevelWidth(l) *
-                                                       t.LevelHeight(l) * 4));
+        std::vector<uint8_t> bytes(
+            static_cast<size_t>(t.Faces() * t.LevelWidth(l) * t.LevelHeight(l) * 4));
         for (size_t i = 0; i < bytes.size(); i += 4) {
             const uint64_t v = rng.Next();
             bytes[i] = static_cast<uint8_t>(v);
@@ -77,8 +77,8 @@ Texture CheckerCube(int size, const SamplerState& s) {
     t.kind = TextureKind::Cube;
     t.width = t.height = size;
     t.sampler = s;
-    static const uint8_t tint[6][3] = {{230, 90, 80},  {80, 200, 120}, {240, 240, 250},
-                                       {90, 70, 60},   {90, 130, 240}, {230, 200, 80}};
+    static const uint8_t tint[6][3] = {{230, 90, 80}, {80, 200, 120}, {240, 240, 250},
+                                       {90, 70, 60},  {90, 130, 240}, {230, 200, 80}};
     std::vector<uint8_t> level(static_cast<size_t>(6 * size * size * 4));
     for (int f = 0; f < 6; ++f)
         for (int j = 0; j < size; ++j)
@@ -196,8 +196,7 @@ void Spheres(std::vector<NamedCase>* out) {
                     Frame f = NewFrame(96, 80);
                     f.textures.push_back(Cube(32, Sampler(min, mip, mag, seamless), ++seed));
                     Pass p;
-                    AddSphere(&p, 24, 32, 96.0f / 80.0f, {0.3f, 0.8f, 3.2f}, {0, 0, 0}, 1.0f,
-                              1.0f);
+                    AddSphere(&p, 24, 32, 96.0f / 80.0f, {0.3f, 0.8f, 3.2f}, {0, 0, 0}, 1.0f, 1.0f);
                     f.passes.push_back(p);
                     out->push_back({std::string("sphere_") + FilterName(min, mip) + "_mag_" +
                                         (mag == Filter::Linear ? "linear" : "nearest") +
@@ -224,8 +223,8 @@ void Spheres(std::vector<NamedCase>* out) {
     // A large cube (strong minification at the rim) and a tiny one (magnification).
     for (int size : {256, 2}) {
         Frame f = NewFrame(128, 96);
-        f.textures.push_back(Cube(size, Sampler(Filter::Linear, MipFilter::Linear, Filter::Linear),
-                                  ++seed));
+        f.textures.push_back(
+            Cube(size, Sampler(Filter::Linear, MipFilter::Linear, Filter::Linear), ++seed));
         Pass p;
         AddSphere(&p, 40, 48, 128.0f / 96.0f, {-0.5f, 1.2f, 2.6f}, {0, 0, 0}, 1.0f, 1.0f);
         f.passes.push_back(p);
@@ -252,9 +251,9 @@ void EdgesAndCorners(std::vector<NamedCase>* out) {
             for (int v = 0; v < 3; ++v) {
                 const glm::vec4 pos(rng.Uniform(-1.2f, 1.2f), rng.Uniform(-1.2f, 1.2f),
                                     rng.Uniform(-0.5f, 0.5f), rng.Uniform(0.8f, 1.5f));
-                const glm::vec3 d = base + glm::vec3(rng.Uniform(-0.3f, 0.3f),
-                                                     rng.Uniform(-0.3f, 0.3f),
-                                                     rng.Uniform(-0.3f, 0.3f));
+                const glm::vec3 d =
+                    base + glm::vec3(rng.Uniform(-0.3f, 0.3f), rng.Uniform(-0.3f, 0.3f),
+                                     rng.Uniform(-0.3f, 0.3f));
                 p.vertices.push_back(V(pos, d, glm::vec4(1.0f)));
             }
         }
@@ -278,8 +277,8 @@ void CornerBlocks(std::vector<NamedCase>* out) {
             for (int v = 0; v < 3; ++v) {
                 const glm::vec4 pos(rng.Uniform(-1.5f, 1.5f), rng.Uniform(-1.5f, 1.5f), 0, 1);
                 const glm::vec3 d(rng.Uniform(-1, 1), rng.Uniform(-1, 1), rng.Uniform(-1, 1));
-                const glm::vec4 col(rng.Uniform(0.2f, 1), rng.Uniform(0.2f, 1), rng.Uniform(0.2f, 1),
-                                    1.0f);
+                const glm::vec4 col(rng.Uniform(0.2f, 1), rng.Uniform(0.2f, 1),
+                                    rng.Uniform(0.2f, 1), 1.0f);
                 p.vertices.push_back(V(pos, d, col));
             }
         f.passes.push_back(p);
@@ -290,19 +289,18 @@ void CornerBlocks(std::vector<NamedCase>* out) {
 // Minification (directions sweep the whole cube across the screen) and magnification. --------
 void MinMag(std::vector<NamedCase>* out) {
     const glm::vec3 sweep[4] = {{-3, -2, 1}, {3, -2, 1}, {2, 3, -1}, {-2, 3, -1}};
-    const glm::vec3 zoom[4] = {{-0.02f, -0.02f, 1}, {0.03f, -0.02f, 1}, {0.03f, 0.02f, 1},
-                               {-0.02f, 0.03f, 1}};
+    const glm::vec3 zoom[4] = {
+        {-0.02f, -0.02f, 1}, {0.03f, -0.02f, 1}, {0.03f, 0.02f, 1}, {-0.02f, 0.03f, 1}};
     for (bool mag : {false, true}) {
         for (MipFilter mip : {MipFilter::Linear, MipFilter::Nearest, MipFilter::None}) {
             Frame f = NewFrame(80, 64);
-            f.textures.push_back(Cube(mag ? 4 : 128, Sampler(Filter::Linear, mip, Filter::Linear),
-                                      mag ? 77 : 78));
+            f.textures.push_back(
+                Cube(mag ? 4 : 128, Sampler(Filter::Linear, mip, Filter::Linear), mag ? 77 : 78));
             Pass p;
             AddQuad(&p, -1, -1, 1, 1, mag ? zoom : sweep);
             f.passes.push_back(p);
-            out->push_back({std::string(mag ? "magnify_" : "minify_") +
-                                FilterName(Filter::Linear, mip),
-                            f});
+            out->push_back(
+                {std::string(mag ? "magnify_" : "minify_") + FilterName(Filter::Linear, mip), f});
         }
     }
 }
@@ -325,10 +323,10 @@ void Textures2D(std::vector<NamedCase>* out) {
                     f.textures.push_back(MakeTexture(TextureKind::Tex2D, 16, 8, s, ++seed));
                     Pass p;
                     // Perspective: the far edge (top) has a larger w.
-                    const glm::vec3 c[4] = {{-1.5f, -0.5f, 0}, {2.5f, -0.5f, 0},
-                                            {2.5f, 1.7f, 0}, {-1.5f, 1.7f, 0}};
-                    const glm::vec4 pos[4] = {{-1, -1, 0, 1}, {1, -1, 0, 1}, {3.5f, 3.5f, 0, 4},
-                                              {-3.5f, 3.5f, 0, 4}};
+                    const glm::vec3 c[4] = {
+                        {-1.5f, -0.5f, 0}, {2.5f, -0.5f, 0}, {2.5f, 1.7f, 0}, {-1.5f, 1.7f, 0}};
+                    const glm::vec4 pos[4] = {
+                        {-1, -1, 0, 1}, {1, -1, 0, 1}, {3.5f, 3.5f, 0, 4}, {-3.5f, 3.5f, 0, 4}};
                     for (int k : {0, 1, 2, 0, 2, 3}) p.vertices.push_back(V(pos[k], c[k]));
                     f.passes.push_back(p);
                     out->push_back({std::string("tex2d_") + FilterName(min, mip) + "_mag_" +
@@ -413,8 +411,8 @@ void Blends(std::vector<NamedCase>* out) {
                 }
             f.passes.push_back(p);
         }
-        out->push_back({std::string("blend_") + (k < 4 ? names[k] : "random_" + std::to_string(k)),
-                        f});
+        out->push_back(
+            {std::string("blend_") + (k < 4 ? names[k] : "random_" + std::to_string(k)), f});
     }
 }
 
@@ -467,10 +465,10 @@ void Probes(std::vector<NamedCase>* out) {
 
 // Exact ties of the face selection, signed zeros, the zero vector. ---------------------------
 void Ties(std::vector<NamedCase>* out) {
-    const glm::vec3 dirs[] = {{1, 1, 0},    {-1, 1, 0},  {1, -1, 0},  {0, 1, 1},   {0, -1, -1},
-                              {1, 0, 1},    {-1, 0, 1},  {1, 1, 1},   {-1, -1, -1}, {1, -1, 1},
-                              {-0.0f, 0, 1}, {0, -0.0f, -1}, {-0.0f, 1, 0}, {0, 0, 0},
-                              {0.5f, 0.5f, 0.5f}};
+    const glm::vec3 dirs[] = {{1, 1, 0},     {-1, 1, 0}, {1, -1, 0},        {0, 1, 1},
+                              {0, -1, -1},   {1, 0, 1},  {-1, 0, 1},        {1, 1, 1},
+                              {-1, -1, -1},  {1, -1, 1}, {-0.0f, 0, 1},     {0, -0.0f, -1},
+                              {-0.0f, 1, 0}, {0, 0, 0},  {0.5f, 0.5f, 0.5f}};
     Frame f = NewFrame(60, 60);
     f.textures.push_back(Cube(4, Sampler(Filter::Linear, MipFilter::None, Filter::Linear), 5));
     f.textures.push_back(Cube(4, Sampler(Filter::Nearest, MipFilter::None, Filter::Nearest), 6));
@@ -508,7 +506,8 @@ void Magnitudes(std::vector<NamedCase>* out) {
         AddSphere(&p, 16, 20, 1.0f, {0.2f, 0.4f, 3.0f}, {0, 0, 0}, 1.0f,
                   std::pow(10.0f, static_cast<float>(e)));
         f.passes.push_back(p);
-        out->push_back({"magnitude_1e" + std::string(e < 0 ? "m" : "p") + std::to_string(std::abs(e)), f});
+        out->push_back(
+            {"magnitude_1e" + std::string(e < 0 ? "m" : "p") + std::to_string(std::abs(e)), f});
     }
 }
 
@@ -611,8 +610,8 @@ Frame BenchmarkFrame(int width, int height, int rings, int segments, int cubeSiz
     f.textures.push_back(
         CheckerCube(cubeSize, Sampler(Filter::Linear, MipFilter::Linear, Filter::Linear)));
     Pass sky;
-    const glm::vec3 c[4] = {{-1.2f, -0.8f, -1}, {1.2f, -0.8f, -1}, {1.2f, 0.8f, -1},
-                            {-1.2f, 0.8f, -1}};
+    const glm::vec3 c[4] = {
+        {-1.2f, -0.8f, -1}, {1.2f, -0.8f, -1}, {1.2f, 0.8f, -1}, {-1.2f, 0.8f, -1}};
     AddQuad(&sky, -1, -1, 1, 1, c);
     f.passes.push_back(sky);
     Pass sphere;

@@ -66,8 +66,9 @@ TEST_P(Conformance, BitIdenticalToLlvmpipe) {
         }
     if (differ) WriteFailure(c.name, json, ours, gl);
     EXPECT_EQ(differ, 0u) << c.name << ": " << differ << " bytes differ (max delta " << maxDelta
-                          << "), first at pixel " << first / 4 << " (x " << (first / 4) % frame.width
-                          << ", row " << (first / 4) / frame.width << ")";
+                          << "), first at pixel " << first / 4 << " (x "
+                          << (first / 4) % frame.width << ", row " << (first / 4) / frame.width
+                          << ")";
 }
 
 INSTANTIATE_TEST_SUITE_P(Cases, Conformance, ::testing::Range<size_t>(0, Cases().size()),

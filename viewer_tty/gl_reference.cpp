@@ -230,8 +230,7 @@ void SetupVertexArray(const Pass& pass, GlObjects* objects) {
         for (size_t i = 0; i < sequential.size(); ++i) sequential[i] = uint32_t(i);
     }
     const std::vector<uint32_t>& indices = pass.indices.empty() ? sequential : pass.indices;
-    MakeBuffer(GL_ELEMENT_ARRAY_BUFFER, indices.data(), indices.size() * sizeof(uint32_t),
-               objects);
+    MakeBuffer(GL_ELEMENT_ARRAY_BUFFER, indices.data(), indices.size() * sizeof(uint32_t), objects);
 }
 
 PassDraw PreparePass(const Frame& frame, const Pass& pass, std::map<ProgramKey, GLuint>* programs,

@@ -11,7 +11,7 @@ namespace {
 
 // Opens path.tmp.<pid>; Commit() renames it over path, the destructor removes it otherwise.
 class AtomicFile {
-public:
+  public:
     explicit AtomicFile(const std::string& path)
         : path_(path), tmp_(path + ".tmp." + std::to_string(getpid())) {
         f_ = std::fopen(tmp_.c_str(), "w");
@@ -34,7 +34,7 @@ public:
         done_ = true;
     }
 
-private:
+  private:
     std::string path_, tmp_;
     FILE* f_ = nullptr;
     bool done_ = false;

@@ -71,8 +71,10 @@ Frame MirrorSphere(int width, int height, int cubeSize) {
 Frame RandomSphere(const SphereSpec& s) {
     Frame f = Blank(s.width, s.height);
     f.textures.push_back(RandomCube(s.cubeSize, s.seed));
-    const glm::mat4 vp = glm::perspective(glm::radians(40.0f), static_cast<float>(s.width) / static_cast<float>(s.height), 0.1f, 100.0f) *
-                         glm::lookAt(s.eye, glm::vec3(0.0f), glm::vec3(0, 1, 0));
+    const glm::mat4 vp =
+        glm::perspective(glm::radians(40.0f),
+                         static_cast<float>(s.width) / static_cast<float>(s.height), 0.1f, 100.0f) *
+        glm::lookAt(s.eye, glm::vec3(0.0f), glm::vec3(0, 1, 0));
     // Vertex (ring i, segment j): position, normal, reflected view ray.
     auto vertex = [&](int i, int j, float* facing) {
         const float th = 3.14159265f * static_cast<float>(i) / static_cast<float>(s.rings);
@@ -109,7 +111,8 @@ Frame FaceQuad(int width, int height, int cubeSize, float e, uint64_t seed) {
 void AddFaintPass(Frame* f, float weight) {
     Pass p;
     p.blend = raster::BlendState::Additive();
-    const glm::vec3 dirs[4] = {{-1.5f, -1.2f, -1}, {1.5f, -1.2f, -1}, {1.5f, 1.2f, -1}, {-1.5f, 1.2f, -1}};
+    const glm::vec3 dirs[4] = {
+        {-1.5f, -1.2f, -1}, {1.5f, -1.2f, -1}, {1.5f, 1.2f, -1}, {-1.5f, 1.2f, -1}};
     AddQuad(&p, dirs, glm::vec4(weight, weight, weight, 0.0f));
     f->passes.push_back(p);
 }

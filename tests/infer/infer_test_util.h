@@ -47,7 +47,8 @@ inline ImageError MaskedError(const LinearSystem& sys, const Vector& rendered, c
         sum += d * d;
         e.maxAbs = std::max(e.maxAbs, std::fabs(d));
     }
-    e.rmse = sys.imageRowOf.empty() ? 0.0 : std::sqrt(sum / static_cast<double>(sys.imageRowOf.size()));
+    e.rmse =
+        sys.imageRowOf.empty() ? 0.0 : std::sqrt(sum / static_cast<double>(sys.imageRowOf.size()));
     return e;
 }
 
@@ -67,12 +68,13 @@ inline std::string OutputPath(const std::string& name) {
 
 inline void PrintSolve(const char* name, const LinearSystem& sys, const SolveResult& r) {
     const auto [lo, hi] = Range(r.x);
-    std::printf("[measure] %s: rows %lld (image %lld) cols %lld nnz %lld | %s, %d iterations, %d "
-                "restarts, %.3f s | image rmse %.3g | texels [%.4g, %.4g]\n",
-                name, static_cast<long long>(sys.k.Rows()), static_cast<long long>(sys.imageRows),
-                static_cast<long long>(sys.Cols()), static_cast<long long>(sys.k.A().NonZeros()),
-                ToString(r.stop), r.iterations, r.restarts, r.seconds,
-                r.log.empty() ? 0.0 : r.log.back().imageRmse, lo, hi);
+    std::printf(
+        "[measure] %s: rows %lld (image %lld) cols %lld nnz %lld | %s, %d iterations, %d "
+        "restarts, %.3f s | image rmse %.3g | texels [%.4g, %.4g]\n",
+        name, static_cast<long long>(sys.k.Rows()), static_cast<long long>(sys.imageRows),
+        static_cast<long long>(sys.Cols()), static_cast<long long>(sys.k.A().NonZeros()),
+        ToString(r.stop), r.iterations, r.restarts, r.seconds,
+        r.log.empty() ? 0.0 : r.log.back().imageRmse, lo, hi);
 }
 
 }  // namespace pem::infer::testing

@@ -1,13 +1,13 @@
 // SPDX-License-Identifier: MIT
 // pem_file_test.cpp — OpenEXR cube maps: exact round trip of every level, the full level chain
 // (degenerate tail included), the face layout as a bijection, the 8-bit copy.
+#include "infer/pem_file.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <filesystem>
 #include <set>
-
-#include "infer/pem_file.h"
 
 namespace pem::infer {
 namespace {
@@ -59,7 +59,8 @@ TEST(PemFile, FaceLayoutIsABijection) {
 }
 
 TEST(PemFile, RoundTripExact) {
-    for (auto [size, levels] : {std::pair{16, 5}, std::pair{32, 6}, std::pair{8, 1}, std::pair{1, 1}}) {
+    for (auto [size, levels] :
+         {std::pair{16, 5}, std::pair{32, 6}, std::pair{8, 1}, std::pair{1, 1}}) {
         const CubeMapF map = RandomMap(size, levels, 42 + static_cast<uint64_t>(size));
         const std::string path = OutputPath("roundtrip_" + std::to_string(size) + ".exr");
         WriteCubeMapExr(map, path);
@@ -77,15 +78,39 @@ TEST(PemFile, TailLevelsHoldTheCoarsestMean) {
     ASSERT_EQ(tail.width, 1);
     ASSERT_EQ(tail.height, 1);
     double mean[4] = {};
-    for (size_t k = 0; k < map.levels[2].size(); ++k) mean[k % 4] += static_cast<double>(map.levels[2][k]) / 6.0;
-    for (int c = 0; c < 4; ++c) EXPECT_EQ(tail.rgba[static_cast<size_t>(c)], static_cast<float>(mean[c]));
+    for (size_t k = 0; k < map.levels[2].size(); ++k)
+        mean[k % 4] += static_cast<double>(map.levels[2][k]) / 6.0;
+    for (int c = 0; c < 4; ++c)
+        EXPECT_EQ(tail.rgba[static_cast<size_t>(c)], static_cast<float>(mean[c]));
 }
 
 TEST(PemFile, EightBitCopy) {
     CubeMapF map;
     map.size = 1;
-    map.levels.push_back({-0.5f, 0.0f, 0.1f / 255.0f, 1.2f / 255.0f, 0.999f, 1.0f, 2.0f, NAN,
-                          0.25f, 0.5f, 0.75f, 1.0f, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0});
+    map.levels.push_back({-0.5f,
+                          0.0f,
+                          0.1f / 255.0f,
+                          1.2f / 255.0f,
+                          0.999f,
+                          1.0f,
+                          2.0f,
+                          NAN,
+                          0.25f,
+                          0.5f,
+                          0.75f,
+                          1.0f,
+                          0,
+                          0,
+                          0,
+                          0,
+                          0,
+                          0,
+                          0,
+                          0,
+                          0,
+                          0,
+                          0,
+                          0});
     const raster::Texture t = ToTexture8(map, {});
     const std::vector<uint8_t> expect{0, 0, 0, 1, 255, 255, 255, 0, 64, 128, 191, 255};
     for (size_t k = 0; k < expect.size(); ++k) EXPECT_EQ(t.levels[0][k], expect[k]) << k;

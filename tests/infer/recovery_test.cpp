@@ -54,9 +54,10 @@ TEST(Recovery, LinearProfileMirrorSphere) {
     lin.profile = raster::Profile::Linear;
     const raster::ImageF img = raster::Render(raster::PreparedFrame(g), lin).imageF;
     const testing::ImageError e8 = MaskedError(sys, Vector(img.rgba.begin(), img.rgba.end()), s.b);
-    std::printf("[measure]   A x vs b: rmse %.3g max %.3g (x255: %.3f) | 8-bit copy rendered: rmse "
-                "%.3g max %.3g (x255: %.3f)\n", e.rmse, e.maxAbs, 255 * e.maxAbs, e8.rmse, e8.maxAbs,
-                255 * e8.maxAbs);
+    std::printf(
+        "[measure]   A x vs b: rmse %.3g max %.3g (x255: %.3f) | 8-bit copy rendered: rmse "
+        "%.3g max %.3g (x255: %.3f)\n",
+        e.rmse, e.maxAbs, 255 * e.maxAbs, e8.rmse, e8.maxAbs, 255 * e8.maxAbs);
     // Observed max 0.41 / 255 (A x) and 0.52 / 255 (8-bit copy).
     EXPECT_LE(e.maxAbs, 1.0 / 255.0);
     EXPECT_LE(e8.maxAbs, 1.0 / 255.0);
@@ -80,13 +81,16 @@ TEST(Recovery, LlvmpipeProfileMirrorSphere) {
     const raster::Image8 out = raster::Render(raster::PreparedFrame(g), {}).image8;
     double sum = 0.0, maxAbs = 0.0;
     for (int64_t r : sys.imageRowOf) {
-        const double d = static_cast<double>(out.rgba[static_cast<size_t>(r)]) - target.rgba[static_cast<size_t>(r)];
+        const double d = static_cast<double>(out.rgba[static_cast<size_t>(r)]) -
+                         target.rgba[static_cast<size_t>(r)];
         sum += d * d;
         maxAbs = std::max(maxAbs, std::fabs(d));
     }
     const double rmse8 = std::sqrt(sum / static_cast<double>(sys.imageRowOf.size()));
-    std::printf("[measure]   llvmpipe re-render of the 8-bit copy: rmse %.3f steps, max %.0f steps "
-                "(%zu masked rows)\n", rmse8, maxAbs, sys.imageRowOf.size());
+    std::printf(
+        "[measure]   llvmpipe re-render of the 8-bit copy: rmse %.3f steps, max %.0f steps "
+        "(%zu masked rows)\n",
+        rmse8, maxAbs, sys.imageRowOf.size());
     // Observed 0.124 steps rms, 1 step max (lambda 1e-5, 1000 iterations): 2x margin.
     EXPECT_LE(rmse8, 0.25);
     EXPECT_LE(maxAbs, 2.0);

@@ -2,6 +2,8 @@
 // regularizer_test.cpp — the cube surface grid (every texel has 4 neighbours, neighbours are
 // adjacent on the sphere of directions, the sampler's bilinear footprints are connected in it),
 // pyramid and prior rows, channel interleaving.
+#include "infer/regularizer.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -9,7 +11,6 @@
 #include <map>
 #include <set>
 
-#include "infer/regularizer.h"
 #include "raster/render.h"
 #include "tests/infer/infer_frames.h"
 
@@ -20,7 +21,7 @@ namespace {
 glm::dvec3 CentreDirection(int face, int i, int j, int n) {
     const double sc = 2.0 * (i + 0.5) / n - 1.0, tc = 2.0 * (j + 0.5) / n - 1.0;
     const glm::dvec3 d[6] = {{1, -tc, -sc}, {-1, -tc, sc}, {sc, 1, tc},
-                             {sc, -1, -tc}, {sc, -tc, 1}, {-sc, -tc, -1}};
+                             {sc, -1, -tc}, {sc, -tc, 1},  {-sc, -tc, -1}};
     return glm::normalize(d[face]);
 }
 
@@ -49,9 +50,11 @@ TEST(Regularizer, NeighboursAreAdjacentDirections) {
                 for (int i = 0; i < n; ++i)
                     for (Edge e : {Edge::Left, Edge::Right, Edge::Up, Edge::Down}) {
                         const FaceTexel nb = Neighbour({f, i, j}, e, n);
-                        const double angle = std::acos(std::min(1.0, glm::dot(CentreDirection(f, i, j, n),
-                                                                              CentreDirection(nb.face, nb.i, nb.j, n))));
-                        ASSERT_LT(angle, maxAngle) << "n " << n << " face " << f << " (" << i << "," << j << ")";
+                        const double angle = std::acos(
+                            std::min(1.0, glm::dot(CentreDirection(f, i, j, n),
+                                                   CentreDirection(nb.face, nb.i, nb.j, n))));
+                        ASSERT_LT(angle, maxAngle)
+                            << "n " << n << " face " << f << " (" << i << "," << j << ")";
                         ASSERT_GT(angle, 0.1 / n);
                     }
     }
@@ -66,7 +69,8 @@ TEST(Regularizer, SamplerFootprintsAreConnected) {
     const raster::Frame frame = test::RandomSphere(spec);
     raster::RenderOptions opt;
     opt.profile = raster::Profile::Linear;
-    const raster::RenderingMatrix a = raster::BuildRenderingMatrix(raster::PreparedFrame(frame), opt);
+    const raster::RenderingMatrix a =
+        raster::BuildRenderingMatrix(raster::PreparedFrame(frame), opt);
     const CubeLayout layout{0, 8, frame.textures[0].NumLevels()};
     std::set<std::pair<uint32_t, uint32_t>> pairs;
     for (int l = 0; l < layout.levels; ++l)
@@ -75,7 +79,8 @@ TEST(Regularizer, SamplerFootprintsAreConnected) {
     for (int64_t r = 0; r < a.rows; r += 4) {
         // Group the row's texels by level.
         std::map<int, std::vector<uint32_t>> byLevel;
-        for (int64_t k = a.rowPtr[static_cast<size_t>(r)]; k < a.rowPtr[static_cast<size_t>(r) + 1]; ++k) {
+        for (int64_t k = a.rowPtr[static_cast<size_t>(r)]; k < a.rowPtr[static_cast<size_t>(r) + 1];
+             ++k) {
             const uint32_t t = a.col[static_cast<size_t>(k)] / 4;
             int l = 0;
             while (l + 1 < layout.levels && t >= layout.LevelBase(l + 1)) ++l;
@@ -90,15 +95,18 @@ TEST(Regularizer, SamplerFootprintsAreConnected) {
                 grew = false;
                 for (uint32_t a1 : texels)
                     for (uint32_t b1 : texels)
-                        if (seen.count(a1) && !seen.count(b1) && pairs.count({std::min(a1, b1), std::max(a1, b1)})) {
+                        if (seen.count(a1) && !seen.count(b1) &&
+                            pairs.count({std::min(a1, b1), std::max(a1, b1)})) {
                             seen.insert(b1);
                             grew = true;
                         }
             }
             ASSERT_EQ(seen.size(), texels.size()) << "row " << r << " level " << l;
             const int n = layout.LevelSize(l);
-            const uint32_t faceOf0 = (texels[0] - layout.LevelBase(l)) / static_cast<uint32_t>(n * n);
-            for (uint32_t t : texels) seamRows += (t - layout.LevelBase(l)) / static_cast<uint32_t>(n * n) != faceOf0;
+            const uint32_t faceOf0 =
+                (texels[0] - layout.LevelBase(l)) / static_cast<uint32_t>(n * n);
+            for (uint32_t t : texels)
+                seamRows += (t - layout.LevelBase(l)) / static_cast<uint32_t>(n * n) != faceOf0;
             ++checked;
         }
     }

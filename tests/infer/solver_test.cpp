@@ -55,7 +55,8 @@ TEST(Solver, StiffCasesStayInRange) {
         free.atol = 1e-10;
         free.logEvery = 0;
         const SolveResult r0 = SolveIterative(raw, InitialGuess(raw), free);
-        testing::PrintSolve((std::string(c.name) + " [no reg, no floor, unbounded]").c_str(), raw, r0);
+        testing::PrintSolve((std::string(c.name) + " [no reg, no floor, unbounded]").c_str(), raw,
+                            r0);
         // Default: regularized, floored scaling, bounds [0, 1] by projected restarts.
         const LinearSystem sys = BuildSystem(s.a, s.frame, 0, {s.b, {}}, RegularizerWeights{});
         SolveOptions opt;
@@ -63,7 +64,8 @@ TEST(Solver, StiffCasesStayInRange) {
         opt.logEvery = 10;
         const SolveResult r = SolveIterative(sys, InitialGuess(sys), opt);
         testing::PrintSolve((std::string(c.name) + " [default]").c_str(), sys, r);
-        WriteLogCsv(r.log, testing::OutputPath(std::string("stiff_") + std::to_string(index) + ".csv"));
+        WriteLogCsv(r.log,
+                    testing::OutputPath(std::string("stiff_") + std::to_string(index) + ".csv"));
         ASSERT_TRUE(testing::AllFinite(r.x)) << c.name;
         const auto [lo, hi] = Range(r.x);
         EXPECT_GE(lo, 0.0) << c.name;
@@ -103,7 +105,8 @@ TEST(Solver, IterativeEqualsDirectOnSmallSystems) {
         }
         const double rel = std::sqrt(diff / norm);
         testing::PrintSolve(m == Method::Lsmr ? "small system LSMR" : "small system CGLS", sys, it);
-        std::printf("[measure]   vs SimplicialLDLT (%.3f s): relative difference %.3g\n", direct.seconds, rel);
+        std::printf("[measure]   vs SimplicialLDLT (%.3f s): relative difference %.3g\n",
+                    direct.seconds, rel);
         EXPECT_LT(rel, 1e-6);
     }
 }
@@ -139,7 +142,8 @@ TEST(Solver, HdrRecoveryOnWellObservedTexels) {
         worst = std::max(worst, std::fabs(r.x[j] - truth) / truth);
         ++observed;
     }
-    std::printf("[measure]   %d well-observed components, worst relative error %.3g\n", observed, worst);
+    std::printf("[measure]   %d well-observed components, worst relative error %.3g\n", observed,
+                worst);
     EXPECT_GT(observed, 4 * 40);
     EXPECT_LT(worst, 1e-6);
 }
@@ -156,8 +160,12 @@ TEST(Solver, SameBytesForOneAndTwoThreads) {
         const SolveResult one = SolveIterative(sys, InitialGuess(sys), opt);
         opt.threads = 2;
         const SolveResult two = SolveIterative(sys, InitialGuess(sys), opt);
-        testing::PrintSolve(m == Method::Lsmr ? "determinism LSMR 1 thread" : "determinism CGLS 1 thread", sys, one);
-        testing::PrintSolve(m == Method::Lsmr ? "determinism LSMR 2 threads" : "determinism CGLS 2 threads", sys, two);
+        testing::PrintSolve(
+            m == Method::Lsmr ? "determinism LSMR 1 thread" : "determinism CGLS 1 thread", sys,
+            one);
+        testing::PrintSolve(
+            m == Method::Lsmr ? "determinism LSMR 2 threads" : "determinism CGLS 2 threads", sys,
+            two);
         ASSERT_EQ(one.x.size(), two.x.size());
         EXPECT_EQ(0, std::memcmp(one.x.data(), two.x.data(), one.x.size() * sizeof(double)));
         EXPECT_EQ(one.iterations, two.iterations);

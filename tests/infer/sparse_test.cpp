@@ -1,12 +1,12 @@
 // SPDX-License-Identifier: MIT
 // sparse_test.cpp — infer's CSR kernels: products against a dense reference, the transpose,
 // weighted stacking, column norms, and thread-count independence of products and reductions.
+#include "infer/sparse.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cstring>
-
-#include "infer/sparse.h"
 
 namespace pem::infer {
 namespace {
@@ -20,7 +20,8 @@ struct Random {
     }
 };
 
-CsrMatrix RandomMatrix(int64_t rows, int64_t cols, int perRow, uint64_t seed, std::vector<double>* dense) {
+CsrMatrix RandomMatrix(int64_t rows, int64_t cols, int perRow, uint64_t seed,
+                       std::vector<double>* dense) {
     Random rng{seed};
     CsrMatrix m;
     m.cols = cols;
@@ -54,19 +55,22 @@ TEST(Sparse, MultiplyAndTransposeMatchDense) {
     op.ApplyTranspose(y, &aty, 1);
     for (int64_t r = 0; r < 37; ++r) {
         double s = 0;
-        for (int64_t c = 0; c < 23; ++c) s += dense[static_cast<size_t>(r * 23 + c)] * x[static_cast<size_t>(c)];
+        for (int64_t c = 0; c < 23; ++c)
+            s += dense[static_cast<size_t>(r * 23 + c)] * x[static_cast<size_t>(c)];
         EXPECT_NEAR(ax[static_cast<size_t>(r)], s, 1e-14);
     }
     for (int64_t c = 0; c < 23; ++c) {
         double s = 0;
-        for (int64_t r = 0; r < 37; ++r) s += dense[static_cast<size_t>(r * 23 + c)] * y[static_cast<size_t>(r)];
+        for (int64_t r = 0; r < 37; ++r)
+            s += dense[static_cast<size_t>(r * 23 + c)] * y[static_cast<size_t>(r)];
         EXPECT_NEAR(aty[static_cast<size_t>(c)], s, 1e-14);
     }
     // Column norms from the transpose.
     const Vector norms = ColumnSquaredNorms(op.At(), 2);
     for (int64_t c = 0; c < 23; ++c) {
         double s = 0;
-        for (int64_t r = 0; r < 37; ++r) s += dense[static_cast<size_t>(r * 23 + c)] * dense[static_cast<size_t>(r * 23 + c)];
+        for (int64_t r = 0; r < 37; ++r)
+            s += dense[static_cast<size_t>(r * 23 + c)] * dense[static_cast<size_t>(r * 23 + c)];
         EXPECT_NEAR(norms[static_cast<size_t>(c)], s, 1e-14);
     }
 }

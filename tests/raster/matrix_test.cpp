@@ -39,7 +39,8 @@ std::vector<double> Apply(const RenderingMatrix& a, const std::vector<double>& x
     std::vector<double> y(static_cast<size_t>(a.rows));
     for (int64_t r = 0; r < a.rows; ++r) {
         double s = a.offset[static_cast<size_t>(r)];
-        for (int64_t k = a.rowPtr[static_cast<size_t>(r)]; k < a.rowPtr[static_cast<size_t>(r) + 1]; ++k)
+        for (int64_t k = a.rowPtr[static_cast<size_t>(r)]; k < a.rowPtr[static_cast<size_t>(r) + 1];
+             ++k)
             s += a.val[static_cast<size_t>(k)] * x[a.col[static_cast<size_t>(k)]];
         y[static_cast<size_t>(r)] = s;
     }
@@ -93,7 +94,8 @@ TEST(RenderingMatrix, OneHotTexelRendersColumn) {
         for (auto& level : g.textures[0].levels) {
             const uint32_t n = static_cast<uint32_t>(level.size() / 4);
             if (texel < base + n) {
-                for (int c = 0; c < 4; ++c) level[4 * (texel - base) + static_cast<uint32_t>(c)] = 255;
+                for (int c = 0; c < 4; ++c)
+                    level[4 * (texel - base) + static_cast<uint32_t>(c)] = 255;
                 break;
             }
             base += n;
@@ -102,9 +104,11 @@ TEST(RenderingMatrix, OneHotTexelRendersColumn) {
         for (int64_t r = 0; r < a.rows; ++r) {
             if (static_cast<uint32_t>(r % 4) != channel) continue;
             double expect = 0;
-            for (int64_t k = a.rowPtr[static_cast<size_t>(r)]; k < a.rowPtr[static_cast<size_t>(r) + 1]; ++k)
+            for (int64_t k = a.rowPtr[static_cast<size_t>(r)];
+                 k < a.rowPtr[static_cast<size_t>(r) + 1]; ++k)
                 if (a.col[static_cast<size_t>(k)] == col) expect = a.val[static_cast<size_t>(k)];
-            ASSERT_NEAR(img.rgba[static_cast<size_t>(r)], expect, 1e-6) << "column " << col << " row " << r;
+            ASSERT_NEAR(img.rgba[static_cast<size_t>(r)], expect, 1e-6)
+                << "column " << col << " row " << r;
         }
     }
 }
@@ -116,15 +120,21 @@ TEST(RenderingMatrix, AdjointIdentity) {
     const RenderingMatrix a = BuildRenderingMatrix(PreparedFrame(f), opt);
     std::vector<double> x(static_cast<size_t>(a.cols)), y(static_cast<size_t>(a.rows));
     uint64_t s = 12345;
-    auto rnd = [&] { s = s * 6364136223846793005ull + 1442695040888963407ull; return static_cast<double>(s >> 11) / 9007199254740992.0 - 0.5; };
+    auto rnd = [&] {
+        s = s * 6364136223846793005ull + 1442695040888963407ull;
+        return static_cast<double>(s >> 11) / 9007199254740992.0 - 0.5;
+    };
     for (double& v : x) v = rnd();
     for (double& v : y) v = rnd();
     double axy = 0, xaty = 0;
     std::vector<double> aty(x.size(), 0.0);
     for (int64_t r = 0; r < a.rows; ++r)
-        for (int64_t k = a.rowPtr[static_cast<size_t>(r)]; k < a.rowPtr[static_cast<size_t>(r) + 1]; ++k) {
-            axy += a.val[static_cast<size_t>(k)] * x[a.col[static_cast<size_t>(k)]] * y[static_cast<size_t>(r)];
-            aty[a.col[static_cast<size_t>(k)]] += a.val[static_cast<size_t>(k)] * y[static_cast<size_t>(r)];
+        for (int64_t k = a.rowPtr[static_cast<size_t>(r)]; k < a.rowPtr[static_cast<size_t>(r) + 1];
+             ++k) {
+            axy += a.val[static_cast<size_t>(k)] * x[a.col[static_cast<size_t>(k)]] *
+                   y[static_cast<size_t>(r)];
+            aty[a.col[static_cast<size_t>(k)]] +=
+                a.val[static_cast<size_t>(k)] * y[static_cast<size_t>(r)];
         }
     for (size_t j = 0; j < x.size(); ++j) xaty += x[j] * aty[j];
     EXPECT_NEAR(axy, xaty, 1e-9 * (std::fabs(axy) + 1.0));
@@ -141,8 +151,9 @@ TEST(RenderingMatrix, LlvmpipeFrameWithinStatedBound) {
         // Passes covering each pixel (the number of roundings), and whether an 8-bit path is used.
         bool fixed8 = false;
         for (const Texture& t : c.frame.textures)
-            fixed8 |= t.kind == TextureKind::Tex2D || !t.sampler.seamless ||
-                      (t.sampler.minFilter == Filter::Nearest && t.sampler.magFilter == Filter::Nearest);
+            fixed8 |=
+                t.kind == TextureKind::Tex2D || !t.sampler.seamless ||
+                (t.sampler.minFilter == Filter::Nearest && t.sampler.magFilter == Filter::Nearest);
         const double perPass = 0.5 + (fixed8 ? 1.5 : 0.0);
         for (size_t i = 0; i < y.size(); ++i) {
             if (y[i] > 1.0 - 1e-9 || y[i] < 0.0) continue;  // saturated

@@ -15,13 +15,13 @@ namespace {
 
 TEST(CubeFace, TiesPreferZThenY) {
     // llvmpipe: z if |z| >= max(|x|, |y|), else x if |x| > |y|, else y (measured on Mesa 22.3.6).
-    EXPECT_EQ(CubeFace({1, 1, 0}), 2);     // +Y
-    EXPECT_EQ(CubeFace({-1, 0, 1}), 4);    // +Z
-    EXPECT_EQ(CubeFace({0, -1, -1}), 5);   // -Z
-    EXPECT_EQ(CubeFace({1, 1, 1}), 4);     // +Z
-    EXPECT_EQ(CubeFace({-1, -1, 0}), 3);   // -Y
-    EXPECT_EQ(CubeFace({2, 1, 1}), 0);     // +X strictly largest
-    EXPECT_EQ(CubeFace({0, 0, 0}), 4);     // zero vector: +Z (sign bit clear)
+    EXPECT_EQ(CubeFace({1, 1, 0}), 2);      // +Y
+    EXPECT_EQ(CubeFace({-1, 0, 1}), 4);     // +Z
+    EXPECT_EQ(CubeFace({0, -1, -1}), 5);    // -Z
+    EXPECT_EQ(CubeFace({1, 1, 1}), 4);      // +Z
+    EXPECT_EQ(CubeFace({-1, -1, 0}), 3);    // -Y
+    EXPECT_EQ(CubeFace({2, 1, 1}), 0);      // +X strictly largest
+    EXPECT_EQ(CubeFace({0, 0, 0}), 4);      // zero vector: +Z (sign bit clear)
     EXPECT_EQ(CubeFace({0, 0, -0.0f}), 5);  // -0.0 selects the negative face
     EXPECT_EQ(CubeFace({-0.0f, 0, 0}), 4);
 }
@@ -65,12 +65,14 @@ TEST(Numeric, Lerp8IsFloorOfRoundedProduct) {
             for (int b = 0; b < 256; b += 5) {
                 const double exact = a + w * (b - a) / 256.0;
                 const int got = Lerp8(w, static_cast<uint8_t>(a), static_cast<uint8_t>(b));
-                ASSERT_EQ(got, static_cast<int>(std::floor(exact + 0.5))) << w << " " << a << " " << b;
+                ASSERT_EQ(got, static_cast<int>(std::floor(exact + 0.5)))
+                    << w << " " << a << " " << b;
             }
 }
 
 TEST(Numeric, FastLog2ExactAtPowersOfTwoAndBelowLog2) {
-    for (int e = -126; e <= 127; ++e) EXPECT_EQ(FastLog2(std::ldexp(1.0f, e)), static_cast<float>(e));
+    for (int e = -126; e <= 127; ++e)
+        EXPECT_EQ(FastLog2(std::ldexp(1.0f, e)), static_cast<float>(e));
     double worst = 0;
     for (int i = 0; i < 1 << 16; ++i) {
         const float x = 1.0f + static_cast<float>(i) / 65536.0f;
@@ -91,7 +93,8 @@ TEST(Numeric, UnormConversionTies) {
     EXPECT_EQ(UnormFromFloatRne(2.0f), 255);
     EXPECT_EQ(UnormFromFloatRne(NAN), 0);
     EXPECT_EQ(UnormFromFloatRne(INFINITY), 255);
-    for (int k = 0; k < 256; ++k) EXPECT_EQ(UnormFromFloatRne(FloatFromUnorm8(static_cast<uint8_t>(k))), k);
+    for (int k = 0; k < 256; ++k)
+        EXPECT_EQ(UnormFromFloatRne(FloatFromUnorm8(static_cast<uint8_t>(k))), k);
 }
 
 TEST(Blend, OverMatchesMeasuredLlvmpipeFormula) {
@@ -103,7 +106,8 @@ TEST(Blend, OverMatchesMeasuredLlvmpipeFormula) {
                 const Rgba8 src{uint8_t(s), uint8_t(s), uint8_t(s), uint8_t(a)};
                 const Rgba8 dst{uint8_t(d), uint8_t(d), uint8_t(d), uint8_t(d)};
                 const Rgba8 out = Blend8(over, src, dst);
-                const int e = std::min(255, Mul8(uint8_t(s), uint8_t(a)) + Mul8(uint8_t(d), uint8_t(255 - a)));
+                const int e = std::min(
+                    255, Mul8(uint8_t(s), uint8_t(a)) + Mul8(uint8_t(d), uint8_t(255 - a)));
                 ASSERT_EQ(out[0], e);
             }
     EXPECT_EQ(Blend8(BlendState::Additive(), {200, 10, 0, 255}, {100, 10, 0, 255})[0], 255);
@@ -140,7 +144,13 @@ TEST(Lod, LinearLevelsClampAndZeroFraction) {
     EXPECT_EQ(top.level0, 4);
     EXPECT_EQ(top.level1, 4);
     EXPECT_EQ(top.frac, 0.0f);
-    const PipeLodState bias = DerivePipeLodState([] { SamplerState s; s.lodBias = 0.3337f; return s; }(), 5);
+    const PipeLodState bias = DerivePipeLodState(
+        [] {
+            SamplerState s;
+            s.lodBias = 0.3337f;
+            return s;
+        }(),
+        5);
     EXPECT_EQ(bias.lodBias, 85.0f / 256.0f);  // quantised to 1/256
 }
 

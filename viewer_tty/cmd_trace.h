@@ -1,0 +1,23 @@
+// SPDX-License-Identifier: MIT
+// cmd_trace.h — `pemref trace`: ray-trace a glTF scene from one or more viewpoints and write the
+// reference images, the segmented two-term images, layers and shells (trace/trace_run.h).
+//   pemref trace SCENE.gltf --out DIR [--views camera|circle:N:STEP_DEG] [--spp K]
+//                [--size WxH] [--threads N] [--layers N] [--full-tree-depth D]
+//                [--fresnel exact|schlick] [--exposure E] [--frames-only] [--quiet]
+// Outputs: the EXR files of trace_run.h, PNG previews (tone-mapped: ×exposure, clamp, sRGB)
+// of reference, greedy, b_τ, local and distant images, and DIR/trace.json. Errors: one line
+// `pemref: <file>: <cause>` (main.cpp prints what() of the exception).
+// A progress line with an ETA goes to stderr only when stderr is a TTY and --quiet is not set.
+// Not here: the tracer (trace/), the interactive viewer.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+namespace pem::cli {
+
+// Adds the `trace` subcommand (its arguments live in cmd_trace.cpp).
+void AddTraceCommand(CLI::App& app);
+// Runs it; call when app.got_subcommand("trace"). Returns the exit code.
+int RunTraceCommand();
+
+}  // namespace pem::cli
