@@ -16,10 +16,11 @@
 //  - Errors: Embree's error callback records the message; the wrapper throws
 //    std::runtime_error("Embree: <call>: <message>") right after the failing call (throwing
 //    from inside the callback would unwind through Embree's C frames).
-// Not here: shading, path logic (the tracer), packets/streams.
+// Not here: shading, path logic (the tracer), packets/streams (except the benchmark below).
 #pragma once
 
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -75,6 +76,14 @@ class EmbreeScene {
     // that want one hit per surface crossing merge equal-t entries themselves.
     std::vector<Hit> IntersectAll(const raster::Ray& ray, float tnear = 0.0f,
                                   float tfar = kInfinity) const;
+
+    // BENCHMARK ONLY (bench/trace_bench.sh): Embree's own packet throughput on this scene, in
+    // million rays per second: `rays` traced with rtcIntersect{4,8,16} packets (packetSize 4, 8
+    // or 16; 1 = rtcIntersect1) in consecutive groups, split into `threads` contiguous chunks,
+    // timed `repeats` times, the fastest kept. Results are discarded; never used for images
+    // (packets break ties differently from single rays).
+    double PacketThroughputMrays(std::span<const raster::Ray> rays, int packetSize, int threads,
+                                 int repeats = 3) const;
 
     static constexpr float kInfinity = std::numeric_limits<float>::infinity();
 

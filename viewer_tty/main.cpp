@@ -15,6 +15,7 @@
 
 #include "raster/render.h"
 #include "viewer_tty/case_file.h"
+#include "viewer_tty/cmd_trace.h"
 #include "viewer_tty/input_error.h"
 #include "viewer_tty/matrix_market.h"
 #include "viewer_tty/png_io.h"
@@ -113,6 +114,7 @@ int main(int argc, char** argv) {
     app.require_subcommand(1);
     RasterArgs rasterArgs;
     AddRaster(app, rasterArgs);
+    cli::AddTraceCommand(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {
@@ -123,6 +125,7 @@ int main(int argc, char** argv) {
     }
     try {
         if (app.got_subcommand("raster")) return RunRaster(rasterArgs);
+        if (app.got_subcommand("trace")) return cli::RunTraceCommand();
     } catch (const std::exception& e) {
         std::fprintf(stderr, "pemref: %s\n", e.what());
         return 1;

@@ -1,0 +1,201 @@
+// SPDX-License-Identifier: MIT
+// tracer_test.cpp — the ray tracer and the trace job: same bytes for 1 and 2 threads, greedy =
+// full tree for a pure mirror, the reference of the hybrid scene is finite, lit and shows the
+// glass teapot, image channels in range (layer alpha, coverage, confidence), circle viewpoints.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <map>
+#include <string>
+
+#include "trace/embree_scene.h"
+#include "trace/layers.h"
+#include "trace/render.h"
+#include "trace/segment.h"
+#include "trace/trace_run.h"
+#include "trace/tracer.h"
+
+namespace pem::trace {
+namespace {
+
+const std::string kRoot = PEM_SOURCE_DIR;
+const std::string kHybrid = kRoot + "/data/scenes/hybrid_glass_teapot.gltf";
+const std::string kPem = kRoot + "/data/scenes/pem_mirror_teapot.gltf";
+
+namespace fs = std::filesystem;
+
+std::map<std::string, std::string> ReadTree(const fs::path& dir) {
+    std::map<std::string, std::string> files;
+    for (const auto& e : fs::recursive_directory_iterator(dir)) {
+        if (!e.is_regular_file()) continue;
+        std::ifstream f(e.path(), std::ios::binary);
+        files[fs::relative(e.path(), dir).string()] =
+            std::string(std::istreambuf_iterator<char>(f), {});
+    }
+    return files;
+}
+
+fs::path FreshDir(const std::string& name) {
+    const fs::path dir = fs::temp_directory_path() / ("pemref_tracer_test_" + name);
+    fs::remove_all(dir);
+    return dir;
+}
+
+TEST(Tracer, SameBytesForOneAndTwoThreads) {
+    const Scene scene = LoadScene(kHybrid);
+    TraceRunOptions o;
+    o.views = CircleViews(CameraForSize(*scene.camera, 64, 48), LensCentre(scene), 2, 8.0);
+    o.k = 2;
+    std::map<std::string, std::string> out[2];
+    for (int threads : {1, 2}) {
+        o.threads = threads;
+        o.outDir = FreshDir("threads" + std::to_string(threads)).string();
+        RunTrace(scene, o);
+        out[threads - 1] = ReadTree(o.outDir);
+        fs::remove_all(o.outDir);
+    }
+    ASSERT_GT(out[0].size(), 20u);
+    ASSERT_EQ(out[0].size(), out[1].size());
+    for (const auto& [name, bytes] : out[0]) {
+        ASSERT_TRUE(out[1].count(name)) << name;
+        EXPECT_TRUE(bytes == out[1].at(name)) << name << " differs between 1 and 2 threads";
+    }
+}
+
+TEST(Tracer, GreedyEqualsFullTreeForPureMirror) {
+    const Scene scene = LoadScene(kPem);  // only a mirror teapot among diffuse objects
+    const EmbreeDevice device({1, "auto"});
+    const EmbreeScene embree(device, scene);
+    const raster::Camera cam = CameraForSize(*scene.camera, 48, 48);
+    for (int depth : {1, 3, 6}) {
+        TraceOptions options;
+        options.fullTreeDepth = depth;
+        const Tracer tracer(scene, embree, options);
+        const FrameResult full = RenderFrame(tracer, cam, 1, Model::FullTree, 1);
+        const FrameResult greedy = RenderFrame(tracer, cam, 1, Model::Greedy, 1);
+        float lens = 0.0f;
+        for (float c : full.lensCoverage.data) lens += c;
+        EXPECT_GT(lens, 100.0f);
+        for (size_t i = 0; i < full.image.data.size(); ++i)
+            ASSERT_NEAR(full.image.data[i], greedy.image.data[i],
+                        1e-6f * std::max(1.0f, std::abs(full.image.data[i])))
+                << "depth " << depth << " value " << i;
+        // One branch per mirror hit: the greedy model casts no more rays than the tree.
+        EXPECT_EQ(full.counts.Total(), greedy.counts.Total());
+    }
+}
+
+// Mean of |a - b| over the pixels where `mask` > 0.
+double MeanAbsDiff(const FloatImage& a, const FloatImage& b, const FloatImage& mask) {
+    double sum = 0.0;
+    size_t n = 0;
+    for (int y = 0; y < a.height; ++y)
+        for (int x = 0; x < a.width; ++x) {
+            if (!(mask.At(x, y)[0] > 0.99f)) continue;
+            for (int c = 0; c < 3; ++c) sum += static_cast<double>(std::abs(a.At(x, y)[c] - b.At(x, y)[c]));
+            ++n;
+        }
+    return n ? sum / (3.0 * static_cast<double>(n)) : 0.0;
+}
+
+TEST(Tracer, HybridReferenceIsFiniteLitAndShowsTheGlass) {
+    const Scene scene = LoadScene(kHybrid);
+    const EmbreeDevice device({2, "auto"});
+    const EmbreeScene embree(device, scene);
+    const Tracer tracer(scene, embree);
+    const raster::Camera cam = CameraForSize(*scene.camera, 80, 60);
+    const FrameResult ref = RenderFrame(tracer, cam, 2, Model::FullTree, 2);
+    double mean = 0.0;
+    for (float v : ref.image.data) {
+        ASSERT_TRUE(std::isfinite(v));
+        ASSERT_GE(v, 0.0f);
+        mean += static_cast<double>(v);
+    }
+    mean /= static_cast<double>(ref.image.data.size());
+    EXPECT_GT(mean, 0.05);
+
+    // The same scene without the glass teapot: its pixels must change.
+    Scene without = scene;
+    for (size_t i = 0; i < without.objects.size(); ++i)
+        if (without.objects[i].name == "glass_teapot") {
+            without.objects.erase(without.objects.begin() + static_cast<long>(i));
+            break;
+        }
+    ASSERT_EQ(without.objects.size() + 1, scene.objects.size());
+    without.lensGroups = FindLensGroups(without.objects, without.materials);
+    const EmbreeScene embree2(device, without);
+    const Tracer tracer2(without, embree2);
+    const FrameResult bg = RenderFrame(tracer2, cam, 2, Model::FullTree, 2);
+    FloatImage teapot(cam.width, cam.height, 1);
+    for (int y = 0; y < cam.height; ++y)
+        for (int x = 0; x < cam.width; ++x) {
+            const Ray ray = raster::PixelRay(cam, x + 0.5f, y + 0.5f);
+            const Hit h = embree.Intersect(ray);
+            teapot.At(x, y)[0] =
+                h.valid && scene.objects[static_cast<size_t>(h.object)].name == "glass_teapot";
+        }
+    EXPECT_GT(MeanAbsDiff(ref.image, bg.image, teapot), 0.02);
+}
+
+void ExpectInRange(const FloatImage& img, int channel, float lo, float hi, const char* what) {
+    for (int y = 0; y < img.height; ++y)
+        for (int x = 0; x < img.width; ++x) {
+            const float v = img.At(x, y)[channel];
+            ASSERT_TRUE(v >= lo && v <= hi) << what << " (" << x << ", " << y << ") = " << v;
+        }
+}
+
+TEST(Tracer, SegmentedImagesAndLayerAlphaInRange) {
+    const Scene scene = LoadScene(kHybrid);
+    const EmbreeDevice device({2, "auto"});
+    const EmbreeScene embree(device, scene);
+    const Tracer tracer(scene, embree);
+    const raster::Camera cam = CameraForSize(*scene.camera, 64, 48);
+    for (int g = 0; g < static_cast<int>(scene.lensGroups.size()); ++g) {
+        const glm::vec3 origin = GroupEmOrigin(scene, g);
+        const GroupSegmentation s = SegmentGroup(tracer, cam, 2, g, 0, origin, 2);
+        for (int t = 0; t < s.terms; ++t) {
+            ExpectInRange(s.b[t], 3, 0.0f, 1.0f, "b alpha");
+            ExpectInRange(s.fg[t], 3, 0.0f, 1.0f, "FG alpha");
+            for (int c = 0; c < 3; ++c) ExpectInRange(s.fg[t], c, 0.0f, 1.0f, "F G");
+            ExpectInRange(s.confidence[t], 0, 0.0f, 1.0f, "confidence");
+        }
+        if (s.mirror) ExpectInRange(s.local, 3, 0.0f, 1.0f, "local alpha");
+        ASSERT_FALSE(s.records.empty());
+        LayerInput in{s.records, s.recordPoints, 2, 0.15, s.distantDistanceSum, s.distantCount};
+        const GroupLayers layers = BuildLayers(scene, g, s.mirror, in);
+        ASSERT_FALSE(layers.clustering.layers.empty());
+        const LayerImages li = RenderLayers(tracer, cam, 2, layers, 2);
+        float alphaSum = 0.0f;
+        for (int t = 0; t < s.terms; ++t)
+            for (const FloatImage& img : li.term[t]) {
+                ExpectInRange(img, 3, 0.0f, 1.0f, "layer alpha");
+                for (int y = 0; y < img.height; ++y)
+                    for (int x = 0; x < img.width; ++x) alphaSum += img.At(x, y)[3];
+            }
+        EXPECT_GT(alphaSum, 1.0f);
+    }
+}
+
+TEST(Tracer, CircleViewsKeepHeightAndDistance) {
+    raster::Camera cam;
+    cam.eye = {1.0f, 2.0f, 3.0f};
+    const glm::vec3 c(1.0f, 0.5f, 0.0f);
+    const auto views = CircleViews(cam, c, 4, 90.0);
+    ASSERT_EQ(views.size(), 4u);
+    EXPECT_NEAR(views[0].eye.x, 1.0f, 1e-6f);
+    EXPECT_NEAR(views[0].eye.z, 3.0f, 1e-6f);
+    EXPECT_NEAR(views[1].eye.x, 4.0f, 1e-5f);  // +90°: from +Z toward +X
+    EXPECT_NEAR(views[1].eye.z, 0.0f, 1e-5f);
+    for (const raster::Camera& v : views) {
+        EXPECT_EQ(v.eye.y, 2.0f);
+        EXPECT_NEAR(std::hypot(v.eye.x - c.x, v.eye.z - c.z), 3.0f, 1e-5f);
+        EXPECT_EQ(v.target, c);
+    }
+}
+
+}  // namespace
+}  // namespace pem::trace

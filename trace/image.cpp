@@ -1,0 +1,73 @@
+// SPDX-License-Identifier: MIT
+// image.cpp — FloatImage helpers and the OpenEXR writer (see image.h).
+#include "trace/image.h"
+
+#include <ImfChannelList.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfOutputFile.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <exception>
+
+#include "viewer_tty/input_error.h"
+
+namespace pem::trace {
+
+void FloatImage::Add(int x, int y, const glm::vec3& rgb, float alpha) {
+    float* p = At(x, y);
+    if (channels == 1) {
+        p[0] += rgb.x;
+        return;
+    }
+    p[0] += rgb.x, p[1] += rgb.y, p[2] += rgb.z;
+    if (channels == 4) p[3] += alpha;
+}
+
+void FloatImage::Scale(float s) {
+    for (float& v : data) v *= s;
+}
+
+namespace {
+
+const char* ChannelName(int channels, int c) {
+    static const char* const kRgba[] = {"R", "G", "B", "A"};
+    return channels == 1 ? "Y" : kRgba[c];
+}
+
+void WriteExrFile(const std::string& path, const FloatImage& image) {
+    Imf::Header header(image.width, image.height);
+    header.compression() = Imf::ZIP_COMPRESSION;
+    Imf::FrameBuffer frame;
+    const size_t xStride = sizeof(float) * static_cast<size_t>(image.channels);
+    for (int c = 0; c < image.channels; ++c) {
+        header.channels().insert(ChannelName(image.channels, c), Imf::Channel(Imf::FLOAT));
+        // OpenEXR wants a non-const base pointer; it only reads through it when writing.
+        char* base = reinterpret_cast<char*>(const_cast<float*>(image.data.data() + c));
+        frame.insert(ChannelName(image.channels, c),
+                     Imf::Slice(Imf::FLOAT, base, xStride, xStride * image.width));
+    }
+    Imf::OutputFile file(path.c_str(), header);
+    file.setFrameBuffer(frame);
+    file.writePixels(image.height);
+}
+
+}  // namespace
+
+void WriteExr(const std::string& path, const FloatImage& image) {
+    if (image.width <= 0 || image.height <= 0) throw InputError(path, "empty image");
+    const std::string tmp = path + ".tmp." + std::to_string(getpid());
+    try {
+        WriteExrFile(tmp, image);
+    } catch (const std::exception& e) {
+        std::remove(tmp.c_str());
+        throw InputError(path, std::string("cannot write OpenEXR: ") + e.what());
+    }
+    if (std::rename(tmp.c_str(), path.c_str()) != 0) {
+        std::remove(tmp.c_str());
+        throw InputError(path, "cannot rename the temporary file");
+    }
+}
+
+}  // namespace pem::trace

@@ -1,0 +1,42 @@
+// SPDX-License-Identifier: MIT
+// image.h — float images of the tracer (HDR, linear) and their OpenEXR output.
+//
+// Conventions: rows top-down (row 0 is the top, as raster/camera.h), pixels interleaved with
+// `channels` floats each (1 = Y, 3 = RGB, 4 = RGBA with PREMULTIPLIED alpha). Box filtering of
+// supersamples is the caller's business (it accumulates sums and calls Scale).
+// Files: 32-bit float channels, ZIP compression, no time stamps, so equal images give equal bytes;
+// written to `<path>.tmp.<pid>` and renamed, so a failed write leaves no file behind.
+// Not here: reading images, tone mapping for previews (viewer_tty/cmd_trace.cpp).
+#pragma once
+
+#include <glm/glm.hpp>
+#include <string>
+#include <vector>
+
+namespace pem::trace {
+
+struct FloatImage {
+    int width = 0, height = 0, channels = 3;
+    std::vector<float> data;  // width · height · channels
+    bool operator==(const FloatImage&) const = default;
+
+    FloatImage() = default;
+    FloatImage(int w, int h, int c)
+        : width(w), height(h), channels(c), data(static_cast<size_t>(w) * h * c, 0.0f) {}
+
+    float* At(int x, int y) {
+        return data.data() + (static_cast<size_t>(y) * width + x) * channels;
+    }
+    const float* At(int x, int y) const {
+        return data.data() + (static_cast<size_t>(y) * width + x) * channels;
+    }
+    // Adds rgb (and `alpha` when the image has 4 channels) to a pixel.
+    void Add(int x, int y, const glm::vec3& rgb, float alpha = 0.0f);
+    void Scale(float s);
+};
+
+// Writes channels R,G,B(,A) (or Y for one channel) as 32-bit float OpenEXR. Throws
+// pem::InputError("<path>: <cause>") when the file cannot be written.
+void WriteExr(const std::string& path, const FloatImage& image);
+
+}  // namespace pem::trace

@@ -1,0 +1,189 @@
+// SPDX-License-Identifier: MIT
+// layers.cpp — layer clustering, shell choice and layer images (layers.h).
+#include "trace/layers.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "trace/parallel.h"
+#include "trace/segment.h"
+
+namespace pem::trace {
+
+namespace {
+
+constexpr int kCells = 16;  // per cube face side, for the occupancy measure
+
+int DirectionCell(const glm::dvec3& d) {
+    const glm::dvec3 a = glm::abs(d);
+    const int axis = a.x >= a.y && a.x >= a.z ? 0 : (a.y >= a.z ? 1 : 2);
+    const int face = 2 * axis + (d[axis] < 0.0 ? 1 : 0);
+    const double m = std::max(a[axis], 1e-300);
+    auto cell = [&](double c) {
+        return std::clamp(static_cast<int>((c / m * 0.5 + 0.5) * kCells), 0, kCells - 1);
+    };
+    return (face * kCells + cell(d[(axis + 1) % 3])) * kCells + cell(d[(axis + 2) % 3]);
+}
+
+double Occupancy(std::span<const glm::dvec3> points, const glm::dvec3& origin) {
+    std::vector<char> used(6 * kCells * kCells, 0);
+    for (const glm::dvec3& p : points) used[static_cast<size_t>(DirectionCell(p - origin))] = 1;
+    return static_cast<double>(std::count(used.begin(), used.end(), 1)) /
+           static_cast<double>(used.size());
+}
+
+LayerShell ChooseShell(const LayerCluster& layer, std::span<const glm::dvec3> points,
+                       const glm::dvec3& origin, double sparseOccupancy) {
+    LayerShell s;
+    s.occupancy = Occupancy(points, origin);
+    if (s.occupancy < sparseOccupancy && points.size() >= 3) {
+        s.kind = "quad";
+        s.shell = FitQuad(points, origin);
+    } else {
+        s.kind = "sphere";
+        s.shell = SphereShell{origin, layer.radius};
+    }
+    return s;
+}
+
+// All vertices of the group's objects (for the local ellipsoid).
+std::vector<glm::dvec3> GroupVertices(const Scene& scene, int group) {
+    std::vector<glm::dvec3> v;
+    for (int o : scene.lensGroups[static_cast<size_t>(group)].objects)
+        for (const glm::vec3& p : scene.objects[static_cast<size_t>(o)].positions)
+            v.emplace_back(p);
+    return v;
+}
+
+void SetMirrorShells(const Scene& scene, int group, const LayerInput& in, GroupLayers& out) {
+    out.mirror = true;
+    const glm::dvec3 origin(out.emOrigin);
+    const std::vector<glm::dvec3> vertices = GroupVertices(scene, group);
+    out.localShell = FitEllipsoid(vertices, origin);
+    out.distantMeanDistance =
+        in.distantCount ? in.distantDistanceSum / static_cast<double>(in.distantCount) : 0.0;
+    float sceneLow = std::numeric_limits<float>::infinity();
+    for (const Object& o : scene.objects) sceneLow = std::min(sceneLow, o.bounds.lo.y);
+    const float groupLow = scene.lensGroups[static_cast<size_t>(group)].bounds.lo.y;
+    std::optional<double> floorY;
+    if (groupLow - sceneLow < 0.01f) floorY = static_cast<double>(sceneLow);
+    out.distantShell = BoxAround(origin, out.distantMeanDistance, floorY);
+}
+
+}  // namespace
+
+glm::vec3 GroupEmOrigin(const Scene& scene, int group) {
+    std::vector<glm::vec3> positions;
+    std::vector<uint32_t> indices;
+    for (int o : scene.lensGroups[static_cast<size_t>(group)].objects) {
+        const Object& obj = scene.objects[static_cast<size_t>(o)];
+        const auto base = static_cast<uint32_t>(positions.size());
+        positions.insert(positions.end(), obj.positions.begin(), obj.positions.end());
+        for (const glm::uvec3& t : obj.triangles)
+            indices.insert(indices.end(), {base + t.x, base + t.y, base + t.z});
+    }
+    return EmOrigin(positions, indices);
+}
+
+GroupLayers BuildLayers(const Scene& scene, int group, bool mirror, const LayerInput& in) {
+    GroupLayers out;
+    out.group = group;
+    out.emOrigin = GroupEmOrigin(scene, group);
+    out.clustering = ClusterLayers(in.records, std::max(1, in.layers));
+    out.objectLayer.assign(scene.objects.size(), -1);
+    const size_t n = out.clustering.layers.size();
+    std::vector<std::vector<glm::dvec3>> points(n);
+    for (size_t i = 0; i < in.records.size(); ++i)
+        points[static_cast<size_t>(out.clustering.recordLayer[i])].emplace_back(in.points[i]);
+    for (size_t l = 0; l < n; ++l) {
+        const LayerCluster& layer = out.clustering.layers[l];
+        for (uint32_t o : layer.objects) out.objectLayer[o] = static_cast<int>(l);
+        out.shells.push_back(
+            ChooseShell(layer, points[l], glm::dvec3(out.emOrigin), in.sparseOccupancy));
+    }
+    if (mirror) SetMirrorShells(scene, group, in, out);
+    return out;
+}
+
+int LayerOf(const GroupLayers& layers, int object, double distance) {
+    const int assigned = layers.objectLayer[static_cast<size_t>(object)];
+    if (assigned >= 0) return assigned;
+    int best = 0;
+    const auto& ls = layers.clustering.layers;
+    for (size_t l = 1; l < ls.size(); ++l)
+        if (std::abs(ls[l].radius - distance) <
+            std::abs(ls[static_cast<size_t>(best)].radius - distance))
+            best = static_cast<int>(l);
+    return best;
+}
+
+namespace {
+
+struct LayerPainter {
+    const Tracer& tracer;
+    const raster::Camera& camera;
+    int k, terms;
+    const GroupLayers& layers;
+    LayerImages& out;
+
+    // The layer colours seen along one exit ray.
+    void Exit(const TermSample& term, int t, int x, int y, RayCounts& counts) const {
+        const size_t n = layers.clustering.layers.size();
+        std::vector<char> filled(n, 0);
+        const int budget = tracer.options().fullTreeDepth - term.events;
+        for (const Hit& h : EnvironmentHits(tracer, term.exit, layers.group, counts)) {
+            const glm::vec3 p = term.exit.origin + h.t * term.exit.dir;
+            const int l = LayerOf(layers, h.object,
+                                  glm::length(glm::dvec3(p) - glm::dvec3(layers.emOrigin)));
+            if (filled[static_cast<size_t>(l)]) continue;
+            filled[static_cast<size_t>(l)] = 1;
+            out.term[t][static_cast<size_t>(l)].Add(
+                x, y, tracer.HitRadiance(term.exit, h, budget, 1.0, counts), 1.0f);
+        }
+        if (!filled[n - 1])
+            out.term[t][n - 1].Add(x, y, EnvRadiance(tracer.scene().environment, term.exit.dir),
+                                   1.0f);
+    }
+
+    void Pixel(int x, int y, RayCounts& counts) const {
+        for (int s = 0; s < k * k; ++s) {
+            const glm::vec2 pos = SamplePosition(x, y, k, s);
+            const Ray ray = raster::PixelRay(camera, pos.x, pos.y);
+            const Hit hit = IncomingHit(tracer, ray, layers.group, counts);
+            if (!hit.valid) continue;
+            const GreedySample g = tracer.TraceGreedy(ray, hit, layers.group, counts);
+            if (g.reflection.escaped) Exit(g.reflection, 0, x, y, counts);
+            if (terms > 1 && g.refraction.escaped) Exit(g.refraction, 1, x, y, counts);
+        }
+    }
+};
+
+}  // namespace
+
+LayerImages RenderLayers(const Tracer& tracer, const raster::Camera& camera, int k,
+                         const GroupLayers& layers, int threads,
+                         const std::function<void(int, int)>& progress) {
+    LayerImages out;
+    const size_t n = layers.clustering.layers.size();
+    if (n == 0) return out;
+    const int terms = tracer.GroupHasGlass(layers.group) ? 2 : 1;
+    for (int t = 0; t < terms; ++t)
+        out.term[t].assign(n, FloatImage(camera.width, camera.height, 4));
+    std::vector<RayCounts> rowCounts(static_cast<size_t>(camera.height));
+    const LayerPainter painter{tracer, camera, k, terms, layers, out};
+    ParallelRows(
+        camera.height, threads,
+        [&](int y) {
+            for (int x = 0; x < camera.width; ++x)
+                painter.Pixel(x, y, rowCounts[static_cast<size_t>(y)]);
+        },
+        progress);
+    const float inv = 1.0f / static_cast<float>(k * k);
+    for (int t = 0; t < terms; ++t)
+        for (FloatImage& img : out.term[t]) img.Scale(inv);
+    for (const RayCounts& c : rowCounts) out.counts += c;
+    return out;
+}
+
+}  // namespace pem::trace

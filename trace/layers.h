@@ -1,0 +1,77 @@
+// SPDX-License-Identifier: MIT
+// layers.h — layered EM geometry per lens group (hybrid §4.1–4.2, PEM §4) and the layer images.
+//
+// Layers: cluster.h's LBG over the hit records of ALL viewpoints (distance from the group's EM
+// origin = shell.h EmOrigin over the group's triangles), whole objects to one layer. An object
+// without records is put, hit by hit, into the layer of nearest radius.
+// Shell per layer: a sphere at the EM origin with the cluster's radius, unless the layer is
+// sparsely occupied — fewer than `sparseOccupancy` of the 6·16·16 cube-direction cells around
+// the EM origin hold a record — then a quad impostor (shell.h FitQuad). Mirror-only groups also
+// get the PEM split's shells: an ellipsoid for the local layer (FitEllipsoid over the group's
+// vertices, minimum volume, centred at the EM origin) and a box for the distant layer (half size
+// = mean distance of the distant hits, bottom on the floor when the group rests on the lowest
+// geometry of the scene).
+// Layer images (per term, per layer, RGBA premultiplied, box-filtered like segment.h): for each
+// sample's exit ray, every front-facing hit outside the group in order of distance; the first hit
+// in each layer gives that layer its colour (the hit's radiance seen along the exit ray) and
+// coverage 1. A ray with no hit in the outermost layer gives the outermost layer the environment
+// (radiance at infinity) along its direction.
+// Not here: the records themselves (segment.h), EM inference (infer/).
+#pragma once
+
+#include <functional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "trace/cluster.h"
+#include "trace/image.h"
+#include "trace/shell.h"
+#include "trace/tracer.h"
+
+namespace pem::trace {
+
+struct LayerShell {
+    std::string kind;  // "sphere" or "quad"
+    Shell shell;
+    double occupancy = 0.0;  // fraction of direction cells holding a record
+};
+
+struct GroupLayers {
+    int group = -1;
+    glm::vec3 emOrigin{0.0f};
+    LayerClustering clustering;
+    std::vector<LayerShell> shells;  // per layer
+    std::vector<int> objectLayer;    // per scene object: its layer, -1 = no records
+    bool mirror = false;             // the PEM shells below are set
+    EllipsoidShell localShell;
+    BoxShell distantShell;
+    double distantMeanDistance = 0.0;
+};
+
+glm::vec3 GroupEmOrigin(const Scene& scene, int group);
+
+struct LayerInput {
+    std::span<const HitRecord> records;
+    std::span<const glm::vec3> points;  // one per record
+    int layers = 2;
+    double sparseOccupancy = 0.15;
+    double distantDistanceSum = 0.0;  // mirror-only groups (segment.h)
+    size_t distantCount = 0;
+};
+
+GroupLayers BuildLayers(const Scene& scene, int group, bool mirror, const LayerInput& input);
+
+// The layer of a hit on `object` at `distance` from the EM origin.
+int LayerOf(const GroupLayers& layers, int object, double distance);
+
+struct LayerImages {
+    std::vector<FloatImage> term[2];  // [τ][layer], RGBA
+    RayCounts counts;
+};
+
+LayerImages RenderLayers(const Tracer& tracer, const raster::Camera& camera, int k,
+                         const GroupLayers& layers, int threads,
+                         const std::function<void(int, int)>& progress = {});
+
+}  // namespace pem::trace

@@ -1,0 +1,41 @@
+// SPDX-License-Identifier: MIT
+// render.h — whole frames from the tracer: the reference (full ray tree) and the same frame
+// with the greedy two-term model at lens objects.
+//
+// Conventions: k×k supersamples per pixel at SamplePosition (tracer.h), box-filtered (the mean);
+// RGB float image, linear HDR radiance. Rows are traced in parallel (parallel.h) and each pixel
+// depends only on its own samples, so the bytes are the same for any thread count.
+// Not here: per-lens-group segmentation (segment.h), files (trace_run.h).
+#pragma once
+
+#include <functional>
+
+#include "raster/camera.h"
+#include "trace/image.h"
+#include "trace/tracer.h"
+
+namespace pem::trace {
+
+enum class Model { FullTree, Greedy };
+
+struct FrameResult {
+    FloatImage image;         // RGB
+    FloatImage lensCoverage;  // Y: fraction of the pixel's samples whose camera ray hits a lens
+    RayCounts counts;
+};
+
+FrameResult RenderFrame(const Tracer& tracer, const raster::Camera& camera, int k, Model model,
+                        int threads, const std::function<void(int, int)>& progress = {});
+
+// Mean squared error and PSNR between two RGB images over the pixels where mask (one channel,
+// may be empty = all pixels) is > 0. Values are clamped to [0, 1] first (display range, peak 1)
+// unless `hdr` is set (then the RMSE is of the raw radiance and the PSNR uses peak 1 anyway).
+struct ImageError {
+    double rmse = 0.0;
+    double psnr = 0.0;  // dB; +inf when equal
+    size_t pixels = 0;
+};
+ImageError CompareImages(const FloatImage& a, const FloatImage& b, const FloatImage& mask,
+                         bool hdr = false);
+
+}  // namespace pem::trace
