@@ -73,8 +73,8 @@ std::vector<raster::Ray> SecondaryRays(const trace::EmbreeScene& scene,
 }
 
 // Our single-ray path (EmbreeScene::Intersect) on `threads` threads, best of `repeats`.
-double OursMrays(const trace::EmbreeScene& scene, const std::vector<raster::Ray>& rays,
-                 int threads, int repeats) {
+double OursMrays(const trace::EmbreeScene& scene, const std::vector<raster::Ray>& rays, int threads,
+                 int repeats) {
     const int chunks = 256;
     const size_t per = (rays.size() + chunks - 1) / chunks;
     double best = 0.0;
@@ -84,7 +84,8 @@ double OursMrays(const trace::EmbreeScene& scene, const std::vector<raster::Ray>
         trace::ParallelRows(chunks, threads, [&](int c) {
             const size_t lo = std::min(rays.size(), static_cast<size_t>(c) * per);
             const size_t hi = std::min(rays.size(), lo + per);
-            for (size_t i = lo; i < hi; ++i) hits[static_cast<size_t>(c)] += scene.Intersect(rays[i]).valid;
+            for (size_t i = lo; i < hi; ++i)
+                hits[static_cast<size_t>(c)] += scene.Intersect(rays[i]).valid;
         });
         best = std::max(best, static_cast<double>(rays.size()) / Since(t0) * 1e-6);
     }
@@ -93,12 +94,13 @@ double OursMrays(const trace::EmbreeScene& scene, const std::vector<raster::Ray>
 
 void Throughput(const char* name, const trace::EmbreeScene& scene,
                 const std::vector<raster::Ray>& rays, int threads, int repeats) {
-    std::printf("%-9s %9zu rays  ours %6.2f Mrays/s | embree rtcIntersect1 %6.2f, 8-packets %6.2f, "
-                "16-packets %6.2f Mrays/s\n",
-                name, rays.size(), OursMrays(scene, rays, threads, repeats),
-                scene.PacketThroughputMrays(rays, 1, threads, repeats),
-                scene.PacketThroughputMrays(rays, 8, threads, repeats),
-                scene.PacketThroughputMrays(rays, 16, threads, repeats));
+    std::printf(
+        "%-9s %9zu rays  ours %6.2f Mrays/s | embree rtcIntersect1 %6.2f, 8-packets %6.2f, "
+        "16-packets %6.2f Mrays/s\n",
+        name, rays.size(), OursMrays(scene, rays, threads, repeats),
+        scene.PacketThroughputMrays(rays, 1, threads, repeats),
+        scene.PacketThroughputMrays(rays, 8, threads, repeats),
+        scene.PacketThroughputMrays(rays, 16, threads, repeats));
 }
 
 void Frame(const char* name, const trace::Tracer& tracer, const raster::Camera& cam, int k,
@@ -114,12 +116,13 @@ void Frame(const char* name, const trace::Tracer& tracer, const raster::Camera& 
     }
     std::sort(s.begin(), s.end());
     std::sort(cpu.begin(), cpu.end());
-    std::printf("%-9s frame %dx%d k=%d, %d threads: median %.3f s (min %.3f, max %.3f; cpu %.3f s), "
-                "%.3f M rays (primary %.3f, secondary %.3f, shadow %.3f)\n",
-                name, cam.width, cam.height, k, threads, s[s.size() / 2], s.front(), s.back(),
-                cpu[cpu.size() / 2],
-                static_cast<double>(counts.Total()) * 1e-6, static_cast<double>(counts.primary) * 1e-6,
-                static_cast<double>(counts.secondary) * 1e-6, static_cast<double>(counts.shadow) * 1e-6);
+    std::printf(
+        "%-9s frame %dx%d k=%d, %d threads: median %.3f s (min %.3f, max %.3f; cpu %.3f s), "
+        "%.3f M rays (primary %.3f, secondary %.3f, shadow %.3f)\n",
+        name, cam.width, cam.height, k, threads, s[s.size() / 2], s.front(), s.back(),
+        cpu[cpu.size() / 2], static_cast<double>(counts.Total()) * 1e-6,
+        static_cast<double>(counts.primary) * 1e-6, static_cast<double>(counts.secondary) * 1e-6,
+        static_cast<double>(counts.shadow) * 1e-6);
 }
 
 }  // namespace
@@ -149,7 +152,8 @@ int main(int argc, char** argv) {
         }
         const trace::Tracer tracer(scene, embree);
         Frame("reference", tracer, cam, k, trace::Model::FullTree, threads, repeats);
-        if (mode != "reference") Frame("greedy", tracer, cam, k, trace::Model::Greedy, threads, repeats);
+        if (mode != "reference")
+            Frame("greedy", tracer, cam, k, trace::Model::Greedy, threads, repeats);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "trace_bench: %s\n", e.what());
         return 1;

@@ -185,7 +185,7 @@ EmbreeScene::EmbreeScene(const EmbreeDevice& device, const Scene& scene)
         AddObject(dev, impl_->scene, scene.objects[i], static_cast<unsigned>(i));
     impl_->device->Check("geometry setup");
     rtcSetSceneFlags(impl_->scene, RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);
-    rtcSetSceneBuildQuality(impl_->scene, RTC_BUILD_QUALITY_MEDIUM);
+    rtcSetSceneBuildQuality(impl_->scene, RTC_BUILD_QUALITY_HIGH);
     rtcCommitScene(impl_->scene);  // builds the BVH (TBB, deterministic for MEDIUM)
     impl_->device->Check("rtcCommitScene");
 }
@@ -283,10 +283,14 @@ size_t TraceSingles(RTCScene scene, std::span<const raster::Ray> rays) {
 
 size_t TraceChunk(RTCScene scene, std::span<const raster::Ray> rays, int packetSize) {
     switch (packetSize) {
-        case 4: return TracePackets<RTCRayHit4, 4>(scene, rays, rtcIntersect4);
-        case 8: return TracePackets<RTCRayHit8, 8>(scene, rays, rtcIntersect8);
-        case 16: return TracePackets<RTCRayHit16, 16>(scene, rays, rtcIntersect16);
-        default: return TraceSingles(scene, rays);
+        case 4:
+            return TracePackets<RTCRayHit4, 4>(scene, rays, rtcIntersect4);
+        case 8:
+            return TracePackets<RTCRayHit8, 8>(scene, rays, rtcIntersect8);
+        case 16:
+            return TracePackets<RTCRayHit16, 16>(scene, rays, rtcIntersect16);
+        default:
+            return TraceSingles(scene, rays);
     }
 }
 
@@ -310,7 +314,8 @@ double EmbreeScene::PacketThroughputMrays(std::span<const raster::Ray> rays, int
             });
         }
         for (std::thread& t : pool) t.join();
-        const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        const double s =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         best = std::max(best, static_cast<double>(rays.size()) / s * 1e-6);
     }
     impl_->device->Check("rtcIntersectN (benchmark)");

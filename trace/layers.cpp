@@ -134,8 +134,8 @@ struct LayerPainter {
         const int budget = tracer.options().fullTreeDepth - term.events;
         for (const Hit& h : EnvironmentHits(tracer, term.exit, layers.group, counts)) {
             const glm::vec3 p = term.exit.origin + h.t * term.exit.dir;
-            const int l = LayerOf(layers, h.object,
-                                  glm::length(glm::dvec3(p) - glm::dvec3(layers.emOrigin)));
+            const int l =
+                LayerOf(layers, h.object, glm::length(glm::dvec3(p) - glm::dvec3(layers.emOrigin)));
             if (filled[static_cast<size_t>(l)]) continue;
             filled[static_cast<size_t>(l)] = 1;
             out.term[t][static_cast<size_t>(l)].Add(

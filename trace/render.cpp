@@ -61,8 +61,8 @@ struct RowTracer {
             glm::vec3 sum(0.0f);
             float lens = 0.0f;
             for (int s = 0; s < spp; ++s) {
-                const size_t i = static_cast<size_t>(x) * static_cast<size_t>(spp) +
-                                 static_cast<size_t>(s);
+                const size_t i =
+                    static_cast<size_t>(x) * static_cast<size_t>(spp) + static_cast<size_t>(s);
                 sum += radiance[i];
                 lens += hits[i].valid && tracer.GroupOf(hits[i].object) >= 0 ? 1.0f : 0.0f;
             }
@@ -76,8 +76,8 @@ struct RowTracer {
 
 FrameResult RenderFrame(const Tracer& tracer, const raster::Camera& camera, int k, Model model,
                         int threads, const std::function<void(int, int)>& progress) {
-    FrameResult result{FloatImage(camera.width, camera.height, 3),
-                       FloatImage(camera.width, camera.height, 1), {}};
+    FrameResult result{
+        FloatImage(camera.width, camera.height, 3), FloatImage(camera.width, camera.height, 1), {}};
     std::vector<RayCounts> rowCounts(static_cast<size_t>(camera.height));
     ParallelRows(
         camera.height, threads,

@@ -41,8 +41,8 @@ FirstBounce BounceOf(const Tracer& tracer, const Ray& ray, const Hit& hit) {
     const SurfaceHit sh = tracer.MakeSurfaceHit(ray, hit);
     const Interaction in = Scatter(glm::normalize(glm::dvec3(ray.dir)), sh);
     const glm::vec3 facing = sh.entering ? sh.geometricNormal : -sh.geometricNormal;
-    const float scale = std::max({1.0f, std::abs(sh.position.x), std::abs(sh.position.y),
-                                  std::abs(sh.position.z)});
+    const float scale =
+        std::max({1.0f, std::abs(sh.position.x), std::abs(sh.position.y), std::abs(sh.position.z)});
     return {{sh.position + facing * (1e-4f * scale), glm::vec3(in.reflectDir)},
             glm::vec3(in.reflectance)};
 }
@@ -79,7 +79,8 @@ struct Segmenter {
         const int budget = tracer.options().fullTreeDepth - 1;
         const Hit h1 = tracer.Intersect(fb.ray, row.counts);
         const bool local = h1.valid && tracer.GroupOf(h1.object) == group;
-        if (local) out.local.Add(x, y, tracer.HitRadiance(fb.ray, h1, budget, 1.0, row.counts), 1.0f);
+        if (local)
+            out.local.Add(x, y, tracer.HitRadiance(fb.ray, h1, budget, 1.0, row.counts), 1.0f);
         Hit d = h1;
         if (local) {
             d = Hit{};
@@ -92,8 +93,8 @@ struct Segmenter {
         out.distant.Add(x, y, tracer.HitRadiance(fb.ray, d, budget, 1.0, row.counts), 1.0f);
         out.fresnel1.Add(x, y, fb.fresnel, 1.0f);
         if (d.valid) {
-            row.distantSum += glm::length(glm::dvec3(fb.ray.origin + d.t * fb.ray.dir) -
-                                          glm::dvec3(origin));
+            row.distantSum +=
+                glm::length(glm::dvec3(fb.ray.origin + d.t * fb.ray.dir) - glm::dvec3(origin));
             ++row.distantCount;
         }
     }
@@ -149,9 +150,9 @@ Hit IncomingHit(const Tracer& tracer, const Ray& ray, int group, RayCounts& coun
     return Hit{};
 }
 
-GroupSegmentation SegmentGroup(const Tracer& tracer, const raster::Camera& camera, int k,
-                               int group, uint32_t viewpoint, const glm::vec3& emOrigin,
-                               int threads, const std::function<void(int, int)>& progress) {
+GroupSegmentation SegmentGroup(const Tracer& tracer, const raster::Camera& camera, int k, int group,
+                               uint32_t viewpoint, const glm::vec3& emOrigin, int threads,
+                               const std::function<void(int, int)>& progress) {
     GroupSegmentation out;
     out.group = group;
     out.terms = tracer.GroupHasGlass(group) ? 2 : 1;
@@ -177,8 +178,8 @@ GroupSegmentation SegmentGroup(const Tracer& tracer, const raster::Camera& camer
         progress);
     // Box filter, then merge the rows' records in row order.
     const float inv = 1.0f / static_cast<float>(k * k);
-    for (FloatImage* img : {&out.b[0], &out.b[1], &out.fg[0], &out.fg[1], &out.local,
-                            &out.distant, &out.fresnel1})
+    for (FloatImage* img :
+         {&out.b[0], &out.b[1], &out.fg[0], &out.fg[1], &out.local, &out.distant, &out.fresnel1})
         img->Scale(inv);
     for (RowRecords& r : rows) {
         out.records.insert(out.records.end(), r.records.begin(), r.records.end());

@@ -33,11 +33,11 @@ namespace pem::trace {
 
 struct GroupSegmentation {
     int group = -1;
-    int terms = 1;          // 1 (mirror-only group: R) or 2 (R, T)
-    FloatImage b[2];        // RGBA
-    FloatImage fg[2];       // RGBA
-    FloatImage confidence[2];  // Y
-    bool mirror = false;    // the PEM split below is filled
+    int terms = 1;                        // 1 (mirror-only group: R) or 2 (R, T)
+    FloatImage b[2];                      // RGBA
+    FloatImage fg[2];                     // RGBA
+    FloatImage confidence[2];             // Y
+    bool mirror = false;                  // the PEM split below is filled
     FloatImage local, distant, fresnel1;  // RGBA
     std::vector<HitRecord> records;
     std::vector<glm::vec3> recordPoints;  // world position of each record's hit
@@ -54,8 +54,8 @@ std::vector<Hit> EnvironmentHits(const Tracer& tracer, const Ray& ray, int group
 // The group's hit along a camera ray, continued through occluders; invalid if none.
 Hit IncomingHit(const Tracer& tracer, const Ray& ray, int group, RayCounts& counts);
 
-GroupSegmentation SegmentGroup(const Tracer& tracer, const raster::Camera& camera, int k,
-                               int group, uint32_t viewpoint, const glm::vec3& emOrigin,
-                               int threads, const std::function<void(int, int)>& progress = {});
+GroupSegmentation SegmentGroup(const Tracer& tracer, const raster::Camera& camera, int k, int group,
+                               uint32_t viewpoint, const glm::vec3& emOrigin, int threads,
+                               const std::function<void(int, int)>& progress = {});
 
 }  // namespace pem::trace

@@ -51,9 +51,9 @@ struct Job {
     const Tracer& tracer;
     TraceRunReport& report;
     Progress progress;
-    std::vector<std::vector<HitRecord>> records;        // per group
-    std::vector<std::vector<glm::vec3>> recordPoints;   // per group
-    std::vector<double> distantSum;                     // per group
+    std::vector<std::vector<HitRecord>> records;       // per group
+    std::vector<std::vector<glm::vec3>> recordPoints;  // per group
+    std::vector<double> distantSum;                    // per group
     std::vector<size_t> distantCount;
 
     void Write(const std::string& path, const FloatImage& image) const {
@@ -85,10 +85,10 @@ struct Job {
     void Segment(size_t v, int g, ViewReport& r) {
         const std::string dir = GroupDir(options.outDir, v, g);
         std::filesystem::create_directories(dir);
-        const GroupSegmentation s = SegmentGroup(
-            tracer, options.views[v], options.k, g, static_cast<uint32_t>(v),
-            report.groups[static_cast<size_t>(g)].layers.emOrigin, options.threads,
-            progress.For("segment"));
+        const GroupSegmentation s =
+            SegmentGroup(tracer, options.views[v], options.k, g, static_cast<uint32_t>(v),
+                         report.groups[static_cast<size_t>(g)].layers.emOrigin, options.threads,
+                         progress.For("segment"));
         for (int t = 0; t < s.terms; ++t) {
             Write(dir + "/b_" + kTermName[t] + ".exr", s.b[t]);
             Write(dir + "/FG_" + kTermName[t] + ".exr", s.fg[t]);
@@ -111,8 +111,8 @@ struct Job {
     void Layers(int g) {
         const auto gi = static_cast<size_t>(g);
         GroupReport& gr = report.groups[gi];
-        LayerInput in{records[gi], recordPoints[gi], options.layers, 0.15, distantSum[gi],
-                      distantCount[gi]};
+        LayerInput in{records[gi], recordPoints[gi], options.layers,
+                      0.15,        distantSum[gi],   distantCount[gi]};
         gr.layers = BuildLayers(scene, g, !gr.glass, in);
         gr.records = records[gi].size();
     }

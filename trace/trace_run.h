@@ -28,9 +28,9 @@ namespace pem::trace {
 
 struct TraceRunOptions {
     std::vector<raster::Camera> views;
-    int k = 3;        // k×k supersamples per pixel
+    int k = 3;  // k×k supersamples per pixel
     int threads = 1;
-    int layers = 2;   // N for the LBG clustering
+    int layers = 2;  // N for the LBG clustering
     TraceOptions trace;
     std::string outDir;
     bool segment = true;  // false: only the reference and greedy frames

@@ -38,8 +38,8 @@ namespace pem::trace {
 constexpr float kSelfHitEpsilon = 1e-5f;
 
 struct TraceOptions {
-    int fullTreeDepth = 6;     // interface events along a branch, shared across lens groups
-    double minWeight = 1e-3;   // branches / paths below this absolute weight stop
+    int fullTreeDepth = 6;    // interface events along a branch, shared across lens groups
+    double minWeight = 1e-3;  // branches / paths below this absolute weight stop
     FresnelModel fresnel = FresnelModel::Exact;
     glm::vec3 ambient{0.05f};  // ambient radiance reflected by a unit-albedo diffuse surface
     bool operator==(const TraceOptions&) const = default;
@@ -59,12 +59,12 @@ struct RayCounts {
 
 // One term of the greedy model for one camera sample.
 struct TermSample {
-    bool escaped = false;     // the path has an exit ray (else it was cut: b = 0)
-    Ray exit;                 // the exit ray (origin, unit dir)
-    Hit exitHit;              // what the exit ray hits first (invalid: the environment)
+    bool escaped = false;  // the path has an exit ray (else it was cut: b = 0)
+    Ray exit;              // the exit ray (origin, unit dir)
+    Hit exitHit;           // what the exit ray hits first (invalid: the environment)
     glm::vec3 F{0.0f}, G{1.0f};
-    glm::vec3 b{0.0f};        // the exit ray's radiance
-    int events = 0;           // interface events along the path
+    glm::vec3 b{0.0f};  // the exit ray's radiance
+    int events = 0;     // interface events along the path
     glm::vec3 Weighted() const { return F * G * b; }
 };
 
@@ -103,8 +103,7 @@ class Tracer {
 
     // Greedy paths for lens group `group` from its hit `first` along `ray` (which may lie
     // behind occluders: continued incoming rays).
-    GreedySample TraceGreedy(const Ray& ray, const Hit& first, int group,
-                             RayCounts& counts) const;
+    GreedySample TraceGreedy(const Ray& ray, const Hit& first, int group, RayCounts& counts) const;
 
     // The surface of a lens hit as ray_path.h sees it.
     SurfaceHit MakeSurfaceHit(const Ray& ray, const Hit& hit) const;
@@ -112,14 +111,13 @@ class Tracer {
     // Diffuse shading in steps, so a renderer can trace one light's shadow rays for many hits
     // in a row (coherent work): ShadeDiffuse = Finish(point, Σ_lights LightIrradiance).
     struct DiffusePoint {
-        glm::vec3 base{0.0f};    // emission + albedo · ambient
+        glm::vec3 base{0.0f};  // emission + albedo · ambient
         glm::vec3 albedo{0.0f};
-        glm::vec3 p{0.0f};       // shadow-ray origin (offset off the surface)
+        glm::vec3 p{0.0f};             // shadow-ray origin (offset off the surface)
         glm::vec3 ns{0.0f}, ng{0.0f};  // shading and geometric normals on the ray's side
     };
     DiffusePoint DiffuseAt(const Ray& ray, const Hit& hit) const;
-    glm::vec3 LightIrradiance(const Light& light, const DiffusePoint& dp,
-                              RayCounts& counts) const;
+    glm::vec3 LightIrradiance(const Light& light, const DiffusePoint& dp, RayCounts& counts) const;
     static glm::vec3 Finish(const DiffusePoint& dp, const glm::vec3& irradiance);
     glm::vec3 ShadeDiffuse(const Ray& ray, const Hit& hit, RayCounts& counts) const;
 
@@ -130,8 +128,8 @@ class Tracer {
     const Scene& scene_;
     const EmbreeScene& embree_;
     TraceOptions options_;
-    std::vector<int> groupOf_;                 // per object
-    std::vector<SurfaceMaterial> surface_;     // per object (lens objects only meaningful)
+    std::vector<int> groupOf_;              // per object
+    std::vector<SurfaceMaterial> surface_;  // per object (lens objects only meaningful)
     std::vector<bool> groupHasGlass_;
 };
 

@@ -47,8 +47,8 @@ std::pair<int, int> ParseSize(const std::string& text) {
     return {w, h};
 }
 
-std::vector<raster::Camera> ParseViews(const trace::Scene& scene, const std::string& spec,
-                                       int w, int h) {
+std::vector<raster::Camera> ParseViews(const trace::Scene& scene, const std::string& spec, int w,
+                                       int h) {
     if (!scene.camera) throw InputError(scene.path, "no camera node (needed by --views)");
     const raster::Camera cam = trace::CameraForSize(*scene.camera, w, h);
     if (spec == "camera") return {cam};
@@ -80,8 +80,8 @@ void WritePreview(const std::string& exrPath, const trace::FloatImage& img, floa
 }
 
 bool WantsPreview(const std::string& path) {
-    for (const char* name : {"/reference.exr", "/greedy.exr", "/b_R.exr", "/b_T.exr",
-                             "/local.exr", "/distant.exr"}) {
+    for (const char* name :
+         {"/reference.exr", "/greedy.exr", "/b_R.exr", "/b_T.exr", "/local.exr", "/distant.exr"}) {
         const std::string n(name);
         if (path.size() >= n.size() && path.compare(path.size() - n.size(), n.size(), n) == 0)
             return true;
@@ -97,7 +97,7 @@ json ShellJson(const trace::Shell& shell) {
     if (const auto* s = std::get_if<trace::SphereShell>(&shell))
         return {{"type", "sphere"}, {"centre", Vec(s->centre)}, {"radius", s->radius}};
     if (const auto* q = std::get_if<trace::QuadShell>(&shell))
-        return {{"type", "quad"},       {"centre", Vec(q->centre)},
+        return {{"type", "quad"},           {"centre", Vec(q->centre)},
                 {"normal", Vec(q->normal)}, {"u", Vec(q->u)},
                 {"v", Vec(q->v)},           {"half_extent", {q->halfExtent.x, q->halfExtent.y}}};
     if (const auto* e = std::get_if<trace::EllipsoidShell>(&shell))
@@ -108,7 +108,9 @@ json ShellJson(const trace::Shell& shell) {
 }
 
 json RaysJson(const trace::RayCounts& c) {
-    return {{"total", c.Total()}, {"primary", c.primary}, {"secondary", c.secondary},
+    return {{"total", c.Total()},
+            {"primary", c.primary},
+            {"secondary", c.secondary},
             {"shadow", c.shadow}};
 }
 
@@ -203,8 +205,9 @@ void WriteJson(const std::string& path, const json& j) {
 
 void AddTraceCommand(CLI::App& app) {
     TraceArgs& a = Args();
-    CLI::App* sub = app.add_subcommand("trace", "ray-trace a glTF scene: reference, segmented "
-                                                "two-term images, layers (OpenEXR + PNG)");
+    CLI::App* sub = app.add_subcommand("trace",
+                                       "ray-trace a glTF scene: reference, segmented "
+                                       "two-term images, layers (OpenEXR + PNG)");
     sub->add_option("scene", a.scene, "scene (.gltf/.glb)")->required();
     sub->add_option("--out", a.out, "output directory")->required();
     sub->add_option("--views", a.views, "camera | circle:N:STEP_DEG");
@@ -231,8 +234,8 @@ int RunTraceCommand() {
     o.threads = a.threads;
     o.layers = a.layers;
     o.trace.fullTreeDepth = a.depth;
-    o.trace.fresnel = a.fresnel == "schlick" ? trace::FresnelModel::Schlick
-                                             : trace::FresnelModel::Exact;
+    o.trace.fresnel =
+        a.fresnel == "schlick" ? trace::FresnelModel::Schlick : trace::FresnelModel::Exact;
     o.outDir = a.out;
     o.segment = !a.framesOnly;
     std::error_code ec;

@@ -34,8 +34,8 @@ struct RasterArgs {
 raster::RenderOptions ParseOptions(const RasterArgs& a) {
     raster::RenderOptions o;
     o.profile = a.profile == "linear" ? raster::Profile::Linear : raster::Profile::Llvmpipe;
-    o.rounding = a.rounding == "d3d" ? raster::UnormRounding::HalfUp
-                                     : raster::UnormRounding::HalfEven;
+    o.rounding =
+        a.rounding == "d3d" ? raster::UnormRounding::HalfUp : raster::UnormRounding::HalfEven;
     o.cubeLod = a.cubeLod == "exact" ? raster::CubeLod::Exact : raster::CubeLod::Llvmpipe;
     o.threads = a.threads;
     return o;

@@ -2,6 +2,8 @@
 // tracer_test.cpp — the ray tracer and the trace job: same bytes for 1 and 2 threads, greedy =
 // full tree for a pure mirror, the reference of the hybrid scene is finite, lit and shows the
 // glass teapot, image channels in range (layer alpha, coverage, confidence), circle viewpoints.
+#include "trace/tracer.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -16,7 +18,6 @@
 #include "trace/render.h"
 #include "trace/segment.h"
 #include "trace/trace_run.h"
-#include "trace/tracer.h"
 
 namespace pem::trace {
 namespace {
@@ -95,7 +96,8 @@ double MeanAbsDiff(const FloatImage& a, const FloatImage& b, const FloatImage& m
     for (int y = 0; y < a.height; ++y)
         for (int x = 0; x < a.width; ++x) {
             if (!(mask.At(x, y)[0] > 0.99f)) continue;
-            for (int c = 0; c < 3; ++c) sum += static_cast<double>(std::abs(a.At(x, y)[c] - b.At(x, y)[c]));
+            for (int c = 0; c < 3; ++c)
+                sum += static_cast<double>(std::abs(a.At(x, y)[c] - b.At(x, y)[c]));
             ++n;
         }
     return n ? sum / (3.0 * static_cast<double>(n)) : 0.0;
