@@ -97,19 +97,11 @@ inline int32_t TruncOrMin(float x) {
     return inRange ? i : INT32_MIN;
 }
 
-void SampleFastSeamless(const PreparedFrame& frame, int textureIndex, const LaneCoords& coords,
-                        unsigned live, std::array<RgbaF, kLanes>* colour) {
-    const PreparedTexture& pt = frame.texture(textureIndex);
-    const Texture& tex = *pt.source;
-    const PipeLodState& st = pt.lod;
-    const int last = tex.NumLevels() - 1;
-    const float n = static_cast<float>(tex.width);
-
-    // Face, projection and rho^2 per lane, then LOD.
-    alignas(32) int32_t face[kLanes], level0[kLanes], level1[kLanes];
-    alignas(32) float s[kLanes], t[kLanes], frac[kLanes], rho2[kLanes];
-    CubeLanes(coords, true, n, face, s, t, rho2);
-    // lambda = 0.5 * FastLog2(rho^2) (+ bias, clamps), then floor / fraction / levels.
+// MIP levels of eight lanes for GL_*_MIPMAP_LINEAR: lambda = 0.5 * FastLog2(rho^2) (+ bias,
+// clamps), floor and fraction, levels clamped to [0, last] with the fraction zeroed at both ends
+// (lod_impl.h's LambdaFromRhoSquared and LevelsFor, lane-parallel).
+void LodLanes(const PipeLodState& st, const float* rho2, int last, int32_t* level0, int32_t* level1,
+              float* frac) {
     alignas(32) float lambda[kLanes];
     for (int l = 0; l < kLanes; ++l) {
         const uint32_t bits = FloatBits(rho2[l]);
@@ -132,6 +124,21 @@ void SampleFastSeamless(const PreparedFrame& frame, int textureIndex, const Lane
         f = below ? 0.0f : f;
         frac[l] = above ? 0.0f : f;
     }
+}
+
+void SampleFastSeamless(const PreparedFrame& frame, int textureIndex, const LaneCoords& coords,
+                        unsigned live, std::array<RgbaF, kLanes>* colour) {
+    const PreparedTexture& pt = frame.texture(textureIndex);
+    const Texture& tex = *pt.source;
+    const PipeLodState& st = pt.lod;
+    const int last = tex.NumLevels() - 1;
+    const float n = static_cast<float>(tex.width);
+
+    // Face, projection and rho^2 per lane, then LOD.
+    alignas(32) int32_t face[kLanes], level0[kLanes], level1[kLanes];
+    alignas(32) float s[kLanes], t[kLanes], frac[kLanes], rho2[kLanes];
+    CubeLanes(coords, true, n, face, s, t, rho2);
+    LodLanes(st, rho2, last, level0, level1, frac);
 
     bool anyLerp = false;
     for (int l = 0; l < kLanes; ++l) anyLerp |= frac[l] > 0.0f;
