@@ -36,17 +36,29 @@ glm::mat4 ViewProjection(const Camera& camera, float zNear, float zFar) {
     return ProjectionMatrix(camera, zNear, zFar) * ViewMatrix(camera);
 }
 
-Ray PixelRay(const Camera& camera, float px, float py) {
-    // Step 1: image point → NDC (y flips: row 0 is the top, NDC +1).
-    const float ndcX = 2.0f * px / static_cast<float>(camera.width) - 1.0f;
-    const float ndcY = 1.0f - 2.0f * py / static_cast<float>(camera.height);
-    // Step 2: NDC → camera-space direction on the plane z = -1.
-    const float tanHalf = std::tan(0.5f * camera.fovYRadians);
-    const float x = ndcX * tanHalf * camera.Aspect();
-    const float y = ndcY * tanHalf;
-    // Step 3: camera → world with the lookAt basis.
+PixelRays::PixelRays(const Camera& camera)
+    : eye_(camera.eye),
+      width_(static_cast<float>(camera.width)),
+      height_(static_cast<float>(camera.height)),
+      tanHalf_(std::tan(0.5f * camera.fovYRadians)),
+      aspect_(camera.Aspect()) {
     const Basis b = CameraBasis(camera);
-    return {camera.eye, glm::normalize(x * b.s + y * b.u + b.f)};
+    s_ = b.s, u_ = b.u, f_ = b.f;
+}
+
+Ray PixelRays::operator()(float px, float py) const {
+    // Step 1: image point → NDC (y flips: row 0 is the top, NDC +1).
+    const float ndcX = 2.0f * px / width_ - 1.0f;
+    const float ndcY = 1.0f - 2.0f * py / height_;
+    // Step 2: NDC → camera-space direction on the plane z = -1.
+    const float x = ndcX * tanHalf_ * aspect_;
+    const float y = ndcY * tanHalf_;
+    // Step 3: camera → world with the lookAt basis.
+    return {eye_, glm::normalize(x * s_ + y * u_ + f_)};
+}
+
+Ray PixelRay(const Camera& camera, float px, float py) {
+    return PixelRays(camera)(px, py);
 }
 
 glm::vec2 ProjectToImage(const Camera& camera, const glm::vec3& p, float* depth) {

@@ -51,6 +51,19 @@ glm::mat4 ViewProjection(const Camera& camera, float zNear, float zFar);
 // centres at +0.5). dir is unit length.
 Ray PixelRay(const Camera& camera, float px, float py);
 
+// PixelRay for many image points of one camera: the per-camera terms (the lookAt basis,
+// tan(fovY/2), the aspect) are computed once; operator() returns exactly PixelRay's ray (same
+// bits: PixelRay is implemented with it).
+class PixelRays {
+  public:
+    explicit PixelRays(const Camera& camera);
+    Ray operator()(float px, float py) const;
+
+  private:
+    glm::vec3 eye_, s_, u_, f_;
+    float width_, height_, tanHalf_, aspect_;
+};
+
 // The continuous image point (rows top-down) where a world point projects; the inverse of
 // PixelRay for points in front of the camera. `depth` receives the distance along the view axis.
 glm::vec2 ProjectToImage(const Camera& camera, const glm::vec3& p, float* depth = nullptr);

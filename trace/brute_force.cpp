@@ -53,7 +53,8 @@ void ForEachHit(const Scene& scene, const raster::Ray& ray, float tnear, float t
         const Object& obj = scene.objects[i];
         for (size_t k = 0; k < obj.triangles.size(); ++k) {
             std::optional<TriangleHit> h =
-                IntersectTriangle(obj, static_cast<int>(k), o, d, tnear, tfar);
+                IntersectTriangle(obj, static_cast<int>(k), o, d, static_cast<double>(tnear),
+                                  static_cast<double>(tfar));
             if (!h) continue;
             h->hit.object = static_cast<int>(i);
             if (!fn(*h)) return;

@@ -214,6 +214,69 @@ bool EmbreeScene::Occluded(const raster::Ray& ray, float tnear, float tfar) cons
     return r.tfar < 0.0f;  // Embree sets tfar = -inf on a hit
 }
 
+namespace {
+
+// Lane i of an 8-ray packet from queries[i]; inactive lanes repeat lane 0 (valid, never traced).
+template <typename RayN>
+void FillPacket(std::span<const RayQuery> queries, RayN& r, int* valid) {
+    for (size_t i = 0; i < EmbreeScene::kPacketSize; ++i) {
+        const bool active = i < queries.size();
+        const RayQuery& q = queries[active ? i : 0];
+        valid[i] = active ? -1 : 0;
+        r.org_x[i] = q.ray.origin.x, r.org_y[i] = q.ray.origin.y, r.org_z[i] = q.ray.origin.z;
+        r.dir_x[i] = q.ray.dir.x, r.dir_y[i] = q.ray.dir.y, r.dir_z[i] = q.ray.dir.z;
+        r.tnear[i] = q.tnear, r.tfar[i] = q.tfar;
+        r.time[i] = 0.0f, r.mask[i] = ~0u, r.id[i] = 0, r.flags[i] = 0;
+    }
+}
+
+void CheckPacket(size_t n) {
+    if (n > EmbreeScene::kPacketSize)
+        throw std::invalid_argument("EmbreeScene: more than 8 rays in a packet");
+}
+
+}  // namespace
+
+void EmbreeScene::IntersectPacket8(std::span<const RayQuery> queries, std::span<Hit> hits) const {
+    CheckPacket(queries.size());
+    if (hits.size() != queries.size())
+        throw std::invalid_argument("EmbreeScene::IntersectPacket8: size mismatch");
+    if (queries.empty()) return;
+    alignas(32) RTCRayHit8 rh;
+    alignas(32) int valid[kPacketSize];
+    FillPacket(queries, rh.ray, valid);
+    for (size_t i = 0; i < kPacketSize; ++i) {
+        rh.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
+        rh.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
+    }
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    rtcIntersect8(valid, impl_->scene, &ctx, &rh);
+    impl_->device->Check("rtcIntersect8");
+    for (size_t i = 0; i < queries.size(); ++i)
+        hits[i] =
+            rh.hit.geomID[i] == RTC_INVALID_GEOMETRY_ID
+                ? Hit{}
+                : ToHit(rh.ray.tfar[i], rh.hit.geomID[i], rh.hit.primID[i], rh.hit.u[i],
+                        rh.hit.v[i], glm::vec3(rh.hit.Ng_x[i], rh.hit.Ng_y[i], rh.hit.Ng_z[i]));
+}
+
+unsigned EmbreeScene::OccludedPacket8(std::span<const RayQuery> queries) const {
+    CheckPacket(queries.size());
+    if (queries.empty()) return 0;
+    alignas(32) RTCRay8 r;
+    alignas(32) int valid[kPacketSize];
+    FillPacket(queries, r, valid);
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    rtcOccluded8(valid, impl_->scene, &ctx, &r);
+    impl_->device->Check("rtcOccluded8");
+    unsigned occluded = 0;
+    for (size_t i = 0; i < queries.size(); ++i)
+        if (r.tfar[i] < 0.0f) occluded |= 1u << i;  // Embree sets tfar = -inf on a hit
+    return occluded;
+}
+
 std::vector<Hit> EmbreeScene::IntersectAll(const raster::Ray& ray, float tnear, float tfar) const {
     std::vector<Hit> hits;
     CollectContext cc{};

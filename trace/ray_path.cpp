@@ -148,7 +148,7 @@ struct TreeWalk {
     SurfaceHitFn& hits;
     int maxDepth;
     double minWeight;
-    std::vector<ExitRay> leaves;
+    std::vector<ExitRay>& leaves;
 
     void Leaf(const Ray& ray, const glm::dvec3& weight, int depth, bool escaped) {
         leaves.push_back({ray, weight, depth, escaped});
@@ -189,17 +189,24 @@ std::optional<GreedyPaths> TraceGreedyPaths(const Ray& primary, SurfaceHitFn& hi
                        TraceGreedyPath(ray, *first, Event::Refract, hits, maxDepth, minWeight)};
 }
 
-std::vector<ExitRay> TraceFullTree(const Ray& primary, SurfaceHitFn& hits, int maxDepth,
-                                   double minWeight) {
+void TraceFullTree(const Ray& primary, SurfaceHitFn& hits, int maxDepth, double minWeight,
+                   std::vector<ExitRay>& leaves) {
     const Ray ray = Normalized(primary);
-    TreeWalk walk{hits, maxDepth, minWeight, {}};
+    leaves.clear();
+    TreeWalk walk{hits, maxDepth, minWeight, leaves};
     const std::optional<SurfaceHit> first = hits.Next(ray);
     if (!first) {
         walk.Leaf(ray, glm::dvec3(1.0), 0, true);
     } else {
         walk.Expand(ray, *first, Medium{}, glm::dvec3(1.0), 0);
     }
-    return walk.leaves;
+}
+
+std::vector<ExitRay> TraceFullTree(const Ray& primary, SurfaceHitFn& hits, int maxDepth,
+                                   double minWeight) {
+    std::vector<ExitRay> leaves;
+    TraceFullTree(primary, hits, maxDepth, minWeight, leaves);
+    return leaves;
 }
 
 bool PathsDiffer(const RayPath& a, const RayPath& b, double maxAngleDeg) {

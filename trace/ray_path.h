@@ -134,6 +134,9 @@ struct ExitRay {
 // leaf.
 std::vector<ExitRay> TraceFullTree(const Ray& primary, SurfaceHitFn& hits, int maxDepth,
                                    double minWeight);
+// The same leaves into `leaves` (cleared first; its capacity is reused across calls).
+void TraceFullTree(const Ray& primary, SurfaceHitFn& hits, int maxDepth, double minWeight,
+                   std::vector<ExitRay>& leaves);
 
 // Adaptive-tessellation criterion (hybrid §5): different path length, a different event at some
 // interface, different escape status, or exit directions more than maxAngleDeg apart.

@@ -5,6 +5,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
+#include <mutex>
+#include <span>
 #include <vector>
 
 #include "trace/parallel.h"
@@ -13,31 +16,43 @@ namespace pem::trace {
 
 namespace {
 
-// One image row, traced in coherent steps: all camera rays, then lens and miss samples, then the
-// diffuse hits one light at a time (the same arithmetic as Tracer::ShadeDiffuse per sample, so
-// the values do not depend on this order), then the box filter in sample order.
+// One image row, traced in coherent steps: all camera rays (packets of 8), then lens and miss
+// samples (the full tree is recorded as a Tracer::RadianceTape, its diffuse leaves deferred; the
+// greedy model shades immediately), then the diffuse points one light at a time (shadow rays in
+// packets of 8; camera-ray points and tree-leaf points in separate batches), then the samples'
+// values, then the box filter in sample order. Per sample this is the same arithmetic as
+// Tracer::HitRadiance / ShadeDiffuse (packets give the same hits as single rays), so the values
+// do not depend on this order.
 struct RowTracer {
+    RowTracer(const Tracer& t, const raster::Camera& c, const raster::PixelRays& p, int kk, Model m)
+        : tracer(t), camera(c), pixelRays(p), k(kk), model(m) {}
+
     const Tracer& tracer;
     const raster::Camera& camera;
+    const raster::PixelRays& pixelRays;
     int k;
     Model model;
     std::vector<Ray> rays;
     std::vector<Hit> hits;
-    std::vector<glm::vec3> radiance, irradiance;
-    std::vector<size_t> diffuse;
+    std::vector<glm::vec2> offsets;  // SampleOffset per sample of a pixel
+    std::vector<glm::vec3> radiance, irradiance, leafIrradiance, stack;
+    std::vector<size_t> diffuse, taped, tapeStart;
     std::vector<Tracer::DiffusePoint> points;
+    Tracer::RadianceTape tape;
 
     void Trace(int y, FrameResult& out, RayCounts& counts) {
         const int spp = k * k;
         const size_t n = static_cast<size_t>(camera.width) * static_cast<size_t>(spp);
         rays.resize(n), hits.resize(n), radiance.assign(n, glm::vec3(0.0f));
-        diffuse.clear(), points.clear();
-        for (size_t i = 0; i < n; ++i) {
-            const int x = static_cast<int>(i) / spp, s = static_cast<int>(i) % spp;
-            const glm::vec2 p = SamplePosition(x, y, k, s);
-            rays[i] = raster::PixelRay(camera, p.x, p.y);
-            hits[i] = tracer.Intersect(rays[i], counts, true);
+        diffuse.clear(), points.clear(), taped.clear(), tapeStart.clear(), tape.Clear();
+        offsets.resize(static_cast<size_t>(spp));
+        for (int s = 0; s < spp; ++s) offsets[static_cast<size_t>(s)] = SampleOffset(k, s);
+        const float fy = static_cast<float>(y);
+        for (size_t i = 0, x = 0; x < static_cast<size_t>(camera.width); ++x) {
+            const float fx = static_cast<float>(x);
+            for (const glm::vec2& o : offsets) rays[i++] = pixelRays(fx + o.x, fy + o.y);
         }
+        tracer.IntersectCamera(rays, hits, counts);
         const int depth = tracer.options().fullTreeDepth;
         for (size_t i = 0; i < n; ++i) {
             const int group = hits[i].valid ? tracer.GroupOf(hits[i].object) : -1;
@@ -47,15 +62,25 @@ struct RowTracer {
             } else if (model == Model::Greedy && group >= 0) {
                 radiance[i] = tracer.TraceGreedy(rays[i], hits[i], group, counts).Radiance();
             } else {
-                radiance[i] = tracer.HitRadiance(rays[i], hits[i], depth, 1.0, counts);
+                taped.push_back(i);
+                tapeStart.push_back(tape.ops.size());
+                tracer.RecordHitRadiance(rays[i], hits[i], depth, 1.0, tape, counts);
             }
         }
+        tapeStart.push_back(tape.ops.size());
         irradiance.assign(points.size(), glm::vec3(0.0f));
-        for (const Light& light : tracer.scene().lights)
-            for (size_t j = 0; j < points.size(); ++j)
-                irradiance[j] += tracer.LightIrradiance(light, points[j], counts);
+        leafIrradiance.assign(tape.points.size(), glm::vec3(0.0f));
+        for (const Light& light : tracer.scene().lights) {
+            tracer.AddLightIrradiance(light, points, irradiance, counts);
+            tracer.AddLightIrradiance(light, tape.points, leafIrradiance, counts);
+        }
         for (size_t j = 0; j < points.size(); ++j)
             radiance[diffuse[j]] = Tracer::Finish(points[j], irradiance[j]);
+        const std::span<const Tracer::RadianceTape::Entry> ops(tape.ops);
+        for (size_t j = 0; j < taped.size(); ++j)
+            radiance[taped[j]] =
+                Tracer::EvalTape(ops.subspan(tapeStart[j], tapeStart[j + 1] - tapeStart[j]),
+                                 tape.points, leafIrradiance, stack);
         const float invSamples = 1.0f / static_cast<float>(spp);
         for (int x = 0; x < camera.width; ++x) {
             glm::vec3 sum(0.0f);
@@ -79,11 +104,23 @@ FrameResult RenderFrame(const Tracer& tracer, const raster::Camera& camera, int 
     FrameResult result{
         FloatImage(camera.width, camera.height, 3), FloatImage(camera.width, camera.height, 1), {}};
     std::vector<RayCounts> rowCounts(static_cast<size_t>(camera.height));
+    const raster::PixelRays pixelRays(camera);
+    // Idle row tracers: each row takes one and gives it back, so the buffers are reused across
+    // rows (no per-row allocation and page faults); every buffer is reset per row.
+    std::mutex poolMutex;
+    std::vector<std::unique_ptr<RowTracer>> pool;
     ParallelRows(
         camera.height, threads,
         [&](int y) {
-            RowTracer row{tracer, camera, k, model, {}, {}, {}, {}, {}, {}};
-            row.Trace(y, result, rowCounts[static_cast<size_t>(y)]);
+            std::unique_ptr<RowTracer> row;
+            {
+                std::lock_guard<std::mutex> lock(poolMutex);
+                if (!pool.empty()) row = std::move(pool.back()), pool.pop_back();
+            }
+            if (!row) row = std::make_unique<RowTracer>(tracer, camera, pixelRays, k, model);
+            row->Trace(y, result, rowCounts[static_cast<size_t>(y)]);
+            std::lock_guard<std::mutex> lock(poolMutex);
+            pool.push_back(std::move(row));
         },
         progress);
     for (const RayCounts& c : rowCounts) result.counts += c;
@@ -98,7 +135,8 @@ ImageError CompareImages(const FloatImage& a, const FloatImage& b, const FloatIm
         for (int x = 0; x < a.width; ++x) {
             if (!mask.data.empty() && !(mask.At(x, y)[0] > 0.0f)) continue;
             for (int c = 0; c < 3; ++c) {
-                double va = a.At(x, y)[c], vb = b.At(x, y)[c];
+                double va = static_cast<double>(a.At(x, y)[c]),
+                       vb = static_cast<double>(b.At(x, y)[c]);
                 if (!hdr) va = std::clamp(va, 0.0, 1.0), vb = std::clamp(vb, 0.0, 1.0);
                 sum += (va - vb) * (va - vb);
             }

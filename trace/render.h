@@ -4,7 +4,10 @@
 //
 // Conventions: k×k supersamples per pixel at SamplePosition (tracer.h), box-filtered (the mean);
 // RGB float image, linear HDR radiance. Rows are traced in parallel (parallel.h) and each pixel
-// depends only on its own samples, so the bytes are the same for any thread count.
+// depends only on its own samples, so the bytes are the same for any thread count. Within a row,
+// camera and shadow rays go in 8-ray packets and full-tree leaves are shaded after the trees
+// (Tracer::RadianceTape); the values are bit for bit those of Tracer::Radiance / GreedyRadiance
+// sample by sample (tracer_test.cpp).
 // Not here: per-lens-group segmentation (segment.h), files (trace_run.h).
 #pragma once
 

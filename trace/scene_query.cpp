@@ -96,16 +96,29 @@ raster::Camera ViewpointCamera(const Scene& scene, int k, int width, int height)
     return c;
 }
 
-SurfacePoint SurfaceAt(const Object& object, int prim, float u, float v) {
+TriangleCorners CornersOf(const Object& object, int prim) {
     const glm::uvec3 t = object.triangles[static_cast<size_t>(prim)];
+    return {{object.positions[t.x], object.positions[t.y], object.positions[t.z]},
+            {object.normals[t.x], object.normals[t.y], object.normals[t.z]}};
+}
+
+SurfacePoint SurfaceAt(const TriangleCorners& c, float u, float v) {
     const float w = 1.0f - u - v;
     SurfacePoint sp;
-    sp.position = w * object.positions[t.x] + u * object.positions[t.y] + v * object.positions[t.z];
-    const glm::vec3 n = w * object.normals[t.x] + u * object.normals[t.y] + v * object.normals[t.z];
+    sp.position = w * c.p[0] + u * c.p[1] + v * c.p[2];
+    const glm::vec3 n = w * c.n[0] + u * c.n[1] + v * c.n[2];
     const float len = glm::length(n);
     if (len > 0.0f) sp.normal = n / len;
-    if (!object.uvs.empty())
+    return sp;
+}
+
+SurfacePoint SurfaceAt(const Object& object, int prim, float u, float v) {
+    SurfacePoint sp = SurfaceAt(CornersOf(object, prim), u, v);
+    if (!object.uvs.empty()) {
+        const glm::uvec3 t = object.triangles[static_cast<size_t>(prim)];
+        const float w = 1.0f - u - v;
         sp.uv = w * object.uvs[t.x] + u * object.uvs[t.y] + v * object.uvs[t.z];
+    }
     return sp;
 }
 

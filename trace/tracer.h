@@ -18,13 +18,18 @@
 //    ray's radiance. Mirrors have F_T = 0.
 //  - Entering/exiting from the geometric normal vs the ray; outward shading normals; self-hits
 //    ignored with tnear = kSelfHitEpsilon · max(1, |origin|∞).
+//  - Batched forms for renderers (IntersectCamera, AddLightIrradiance: 8-ray packets;
+//    RecordHitRadiance / EvalTape: the full tree with its diffuse shading deferred) give the
+//    same bits as the one-ray-at-a-time functions.
 // Camera: raster/camera.h PixelRay; k×k supersamples per pixel on a regular grid at
 // (x + (i + ½)/k, y + (j + ½)/k) (k = 1: the pixel centre).
 // Not here: images and files (render.h, trace_run.h), layers (layers.h).
 #pragma once
 
 #include <cstdint>
+#include <deque>
 #include <glm/glm.hpp>
+#include <span>
 #include <vector>
 
 #include "raster/camera.h"
@@ -73,7 +78,9 @@ struct GreedySample {
     glm::vec3 Radiance() const { return reflection.Weighted() + refraction.Weighted(); }
 };
 
-// k×k sample s (row-major in the pixel) of pixel (x, y), in continuous image coordinates.
+// k×k sample s (row-major in the pixel) of pixel (x, y), in continuous image coordinates:
+// (x, y) + SampleOffset(k, s) (so a renderer may compute the k² offsets once).
+glm::vec2 SampleOffset(int k, int s);
 glm::vec2 SamplePosition(int x, int y, int k, int s);
 
 class Tracer {
@@ -83,11 +90,15 @@ class Tracer {
 
     const Scene& scene() const { return scene_; }
     const TraceOptions& options() const { return options_; }
-    int GroupOf(int object) const;  // lens group index, -1 for non-lens objects
+    // Lens group index, -1 for non-lens objects.
+    int GroupOf(int object) const { return groupOf_[static_cast<size_t>(object)]; }
     bool GroupHasGlass(int group) const;
 
     // Ray queries that count themselves (tnear from the self-hit epsilon unless given).
     Hit Intersect(const Ray& ray, RayCounts& counts, bool primary = false) const;
+    // Camera rays in packets of 8 (EmbreeScene::IntersectPacket8): hits[i] is bit for bit
+    // Intersect(rays[i], counts, true); counted as primary rays.
+    void IntersectCamera(std::span<const Ray> rays, std::span<Hit> hits, RayCounts& counts) const;
     std::vector<Hit> IntersectAll(const Ray& ray, RayCounts& counts) const;
 
     // Reference radiance along a camera ray (full tree).
@@ -118,10 +129,59 @@ class Tracer {
     };
     DiffusePoint DiffuseAt(const Ray& ray, const Hit& hit) const;
     glm::vec3 LightIrradiance(const Light& light, const DiffusePoint& dp, RayCounts& counts) const;
+    // One light for many points, the shadow rays in packets of 8 (EmbreeScene::OccludedPacket8):
+    // irradiance[j] += LightIrradiance(light, points[j], counts), the same values and additions.
+    void AddLightIrradiance(const Light& light, std::span<const DiffusePoint> points,
+                            std::span<glm::vec3> irradiance, RayCounts& counts) const;
     static glm::vec3 Finish(const DiffusePoint& dp, const glm::vec3& irradiance);
     glm::vec3 ShadeDiffuse(const Ray& ray, const Hit& hit, RayCounts& counts) const;
 
+    // HitRadiance with its diffuse shading deferred, so a renderer can trace the shadow rays of
+    // many samples' tree leaves together (RenderFrame's rows). RecordHitRadiance appends to the
+    // tape the ops of one HitRadiance call (the same rays, in the same order) and one
+    // DiffusePoint per diffuse hit; once `irradiance[j]` holds Σ_lights LightIrradiance for
+    // points[j] (summed light by light), EvalTape over that call's ops returns HitRadiance's
+    // value bit for bit (the same additions and products in the same order).
+    struct RadianceTape {
+        enum class Op : uint8_t { Value, Diffuse, BeginSum, AddWeighted };
+        struct Entry {
+            Op op;
+            uint32_t point = 0;  // Diffuse: index into points
+            glm::vec3 v{0.0f};   // Value: the radiance; AddWeighted: the leaf weight
+        };
+        std::vector<Entry> ops;
+        std::vector<DiffusePoint> points;
+        void Clear() { ops.clear(), points.clear(); }
+
+        // Scratch per lens-group nesting level (buffers reused across calls; a deque so that
+        // deeper levels never move the ones in use).
+        struct Exit {
+            Ray ray;
+            Hit hit;
+        };
+        struct Level {
+            std::vector<ExitRay> leaves;
+            std::vector<Exit> exits;
+        };
+        std::deque<Level> levels;
+    };
+    void RecordHitRadiance(const Ray& ray, const Hit& hit, int depthBudget, double weight,
+                           RadianceTape& tape, RayCounts& counts) const;
+    // `stack` is scratch (reused to avoid allocations).
+    static glm::vec3 EvalTape(std::span<const RadianceTape::Entry> ops,
+                              std::span<const DiffusePoint> points,
+                              std::span<const glm::vec3> irradiance, std::vector<glm::vec3>& stack);
+
   private:
+    void RecordHitRadiance(const Ray& ray, const Hit& hit, int depthBudget, double weight,
+                           RadianceTape& tape, size_t level, RayCounts& counts) const;
+
+    // LightIrradiance before its shadow ray: false when the light cannot contribute (no ray);
+    // otherwise `value` (E·cosθ) counts iff `shadow` is unoccluded. Writes through pointers (a
+    // returned struct was copied through the stack with store-forwarding stalls).
+    bool PrepareLight(const Light& light, const DiffusePoint& dp, RayQuery* shadow,
+                      glm::vec3* value) const;
+
     glm::vec3 LensRadiance(const Ray& ray, const Hit& hit, int depthBudget, double weight,
                            RayCounts& counts) const;
 
@@ -130,6 +190,7 @@ class Tracer {
     TraceOptions options_;
     std::vector<int> groupOf_;              // per object
     std::vector<SurfaceMaterial> surface_;  // per object (lens objects only meaningful)
+    std::vector<std::vector<TriangleCorners>> lensCorners_;  // per object, lens objects only
     std::vector<bool> groupHasGlass_;
 };
 

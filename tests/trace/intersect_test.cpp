@@ -1,10 +1,13 @@
 // SPDX-License-Identifier: MIT
 // intersect_test.cpp — EmbreeScene against the double-precision brute force (brute_force.h) on
 // random triangle soups and on the bundled teapot scenes: same object/prim except on exact ties,
-// t within 1e-4 relative; identical hits for threads=1 and 2; IntersectAll and Occluded agree.
+// t within 1e-4 relative; identical hits for threads=1 and 2; IntersectAll and Occluded agree;
+// 8-ray packets (IntersectPacket8 / OccludedPacket8) bit-identical to single rays.
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cstdio>
+#include <cstring>
 #include <random>
 #include <stdexcept>
 
@@ -143,6 +146,95 @@ TEST(Embree, OneAndTwoThreadsGiveIdenticalHits) {
         ASSERT_EQ(s1.Intersect(r), s2.Intersect(r));
         ASSERT_EQ(s1.IntersectAll(r), s2.IntersectAll(r));
     }
+}
+
+// Every field of two hits with the same bits (operator== would equate 0 and -0).
+bool SameBits(const Hit& a, const Hit& b) {
+    auto bits = [](float f) { return std::bit_cast<uint32_t>(f); };
+    return a.valid == b.valid && a.object == b.object && a.prim == b.prim &&
+           bits(a.t) == bits(b.t) && bits(a.u) == bits(b.u) && bits(a.v) == bits(b.v) &&
+           bits(a.ng.x) == bits(b.ng.x) && bits(a.ng.y) == bits(b.ng.y) &&
+           bits(a.ng.z) == bits(b.ng.z);
+}
+
+// Packets of every size 1..8 (cycling) over `queries` against Intersect/Occluded one by one.
+// Returns the number of hits.
+int ComparePackets(const EmbreeScene& es, const std::vector<RayQuery>& queries) {
+    int hits = 0;
+    size_t size = 1;
+    for (size_t base = 0; base < queries.size(); base += size, size = size % 8 + 1) {
+        const size_t n = std::min(size, queries.size() - base);
+        const std::span<const RayQuery> packet(queries.data() + base, n);
+        std::vector<Hit> got(n);
+        es.IntersectPacket8(packet, got);
+        const unsigned occluded = es.OccludedPacket8(packet);
+        for (size_t i = 0; i < n; ++i) {
+            const RayQuery& q = packet[i];
+            const Hit want = es.Intersect(q.ray, q.tnear, q.tfar);
+            EXPECT_TRUE(SameBits(got[i], want)) << "ray " << base + i;
+            EXPECT_EQ(((occluded >> i) & 1u) != 0, es.Occluded(q.ray, q.tnear, q.tfar))
+                << "ray " << base + i;
+            hits += want.valid;
+        }
+    }
+    return hits;
+}
+
+TEST(Embree, PacketsGiveTheSameBitsAsSingleRays) {
+    const EmbreeDevice device = Device(2);
+    // Random soups: random rays with assorted t ranges.
+    for (unsigned seed = 1; seed <= 2; ++seed) {
+        const Scene scene = RandomScene(seed, 4, 500);
+        const EmbreeScene es(device, scene);
+        Bounds all;
+        for (const Object& o : scene.objects) all.Extend(o.bounds);
+        std::vector<RayQuery> queries;
+        std::mt19937 rng(seed);
+        std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+        for (const raster::Ray& r : RandomRays(200 + seed, 3000, all)) {
+            const float tnear = unit(rng) < 0.5f ? 0.0f : unit(rng);
+            const float tfar = unit(rng) < 0.5f ? EmbreeScene::kInfinity : tnear + 4.0f * unit(rng);
+            queries.push_back({r, tnear, tfar});
+        }
+        EXPECT_GT(ComparePackets(es, queries), 1000);
+    }
+    // The hybrid scene: camera rays (as RenderFrame makes them), then from their hits reflected
+    // rays and shadow rays toward the lights (tnear / tfar as the tracer sets them), plus random
+    // rays at the lens group.
+    const Scene scene = LoadScene(kRoot + "/data/scenes/hybrid_glass_teapot.gltf");
+    const EmbreeScene es(device, scene);
+    const raster::Camera cam = CameraForSize(*scene.camera, 64, 48);
+    const raster::PixelRays pixelRays(cam);
+    std::vector<RayQuery> camera, secondary;
+    for (int y = 0; y < cam.height; ++y)
+        for (int x = 0; x < cam.width; ++x)
+            for (int s = 0; s < 4; ++s) {
+                const raster::Ray r =
+                    pixelRays(static_cast<float>(x) + 0.25f + 0.5f * static_cast<float>(s % 2),
+                              static_cast<float>(y) + 0.25f + 0.5f * static_cast<float>(s / 2));
+                camera.push_back({r});
+                const Hit h = es.Intersect(r);
+                if (!h.valid) continue;
+                const glm::vec3 p = r.origin + h.t * r.dir;
+                const glm::vec3 n = glm::dot(h.ng, r.dir) > 0.0f ? -h.ng : h.ng;
+                const glm::vec3 o = p + n * 1e-4f;
+                secondary.push_back({{o, glm::normalize(glm::reflect(r.dir, n))}, 1e-5f});
+                for (const Light& light : scene.lights) {
+                    const glm::vec3 d = light.position - o;
+                    const float dist = glm::length(d);
+                    secondary.push_back({{o, d / dist}, 0.0f, dist * 0.9999f});
+                }
+            }
+    for (const raster::Ray& r : RandomRays(13, 2000, scene.lensGroups[0].bounds))
+        secondary.push_back({r});
+    EXPECT_GT(ComparePackets(es, camera), static_cast<int>(camera.size()) / 2);
+    EXPECT_GT(ComparePackets(es, secondary), 1000);
+    // Empty packets and size checks.
+    EXPECT_EQ(es.OccludedPacket8({}), 0u);
+    std::vector<RayQuery> nine(9);
+    std::vector<Hit> nineHits(9);
+    EXPECT_THROW(es.IntersectPacket8(nine, nineHits), std::invalid_argument);
+    EXPECT_THROW(es.OccludedPacket8(nine), std::invalid_argument);
 }
 
 TEST(Embree, IntersectAllMatchesBruteForceAndCrossesClosedShellsEvenly) {

@@ -1,12 +1,14 @@
 // SPDX-License-Identifier: MIT
 // tracer_test.cpp — the ray tracer and the trace job: same bytes for 1 and 2 threads, greedy =
-// full tree for a pure mirror, the reference of the hybrid scene is finite, lit and shows the
+// full tree for a pure mirror, RenderFrame (packets, deferred shading) = the single-ray path
+// sample by sample, bit for bit, the reference of the hybrid scene is finite, lit and shows the
 // glass teapot, image channels in range (layer alpha, coverage, confidence), circle viewpoints.
 #include "trace/tracer.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -43,6 +45,44 @@ fs::path FreshDir(const std::string& name) {
     const fs::path dir = fs::temp_directory_path() / ("pemref_tracer_test_" + name);
     fs::remove_all(dir);
     return dir;
+}
+
+// RenderFrame traces rows in steps (camera rays and shadow rays in 8-ray packets, full-tree
+// leaves shaded after the tree); the single-ray path (Tracer::Radiance / GreedyRadiance per
+// sample, rtcIntersect1 / rtcOccluded1) must give the same float bits.
+TEST(Tracer, RenderFrameEqualsTheSingleRayPathBitForBit) {
+    for (const std::string& file : {kHybrid, kPem}) {
+        const Scene scene = LoadScene(file);
+        const EmbreeDevice device({2, "auto"});
+        const EmbreeScene embree(device, scene);
+        const Tracer tracer(scene, embree);
+        const raster::Camera cam = CameraForSize(*scene.camera, 48, 36);
+        const int k = 3, spp = k * k;
+        for (Model model : {Model::FullTree, Model::Greedy}) {
+            const FrameResult frame = RenderFrame(tracer, cam, k, model, 2);
+            FloatImage expected(cam.width, cam.height, 3);
+            RayCounts counts;
+            for (int y = 0; y < cam.height; ++y)
+                for (int x = 0; x < cam.width; ++x) {
+                    glm::vec3 sum(0.0f);
+                    for (int s = 0; s < spp; ++s) {
+                        const glm::vec2 p = SamplePosition(x, y, k, s);
+                        const Ray ray = raster::PixelRay(cam, p.x, p.y);
+                        sum += model == Model::FullTree ? tracer.Radiance(ray, counts)
+                                                        : tracer.GreedyRadiance(ray, counts);
+                    }
+                    expected.Add(x, y, sum * (1.0f / static_cast<float>(spp)));
+                }
+            ASSERT_EQ(frame.image.data.size(), expected.data.size());
+            EXPECT_EQ(std::memcmp(frame.image.data.data(), expected.data.data(),
+                                  expected.data.size() * sizeof(float)),
+                      0)
+                << file << (model == Model::FullTree ? " full tree" : " greedy");
+            EXPECT_EQ(frame.counts.primary, counts.primary);
+            EXPECT_EQ(frame.counts.secondary, counts.secondary);
+            EXPECT_EQ(frame.counts.shadow, counts.shadow);
+        }
+    }
 }
 
 TEST(Tracer, SameBytesForOneAndTwoThreads) {
