@@ -1,6 +1,7 @@
 # Flags every pemref target gets (pem_target_defaults). Bit-exactness rules:
 #  - no contraction of a*b+c into FMA by the compiler (explicit std::fma only),
-#  - no fast-math, no -march=native: the same bytes on any x86-64/arm64, gcc or clang, -O0..-O3.
+#  - no fast-math and no host-specific arch flags: the same bytes on any x86-64/arm64, gcc or
+#    clang, -O0..-O3 (the AVX2+FMA fragment build is chosen at run time, raster/fragment.h).
 function(pem_target_defaults target)
   target_compile_options(${target} PRIVATE
     -ffp-contract=off -fno-fast-math -fno-finite-math-only
