@@ -8,62 +8,37 @@
 namespace pem::raster {
 namespace {
 
-// Factor for channel c (0..2 colour, 3 alpha) in 8 bits. ONE_MINUS_X is 255 - x (a bitwise NOT);
-// SRC_ALPHA_SATURATE is min(As, 255 - Ad) for colour and ONE for alpha.
-uint8_t Factor8(BlendFactor f, int c, const Rgba8& s, const Rgba8& d) {
+// Factor for channel c (0..2 colour, 3 alpha), `one` being 255 (8-bit) or 1.0f (float).
+// ONE_MINUS_X is one - x (for 8 bits a bitwise NOT); SRC_ALPHA_SATURATE is min(As, one - Ad)
+// for colour and ONE for alpha.
+template <typename T>
+T Factor(BlendFactor f, int c, const std::array<T, 4>& s, const std::array<T, 4>& d, T one) {
+    auto inv = [one](T x) { return static_cast<T>(one - x); };
     switch (f) {
         case BlendFactor::Zero:
-            return 0;
+            return T(0);
         case BlendFactor::One:
-            return 255;
+            return one;
         case BlendFactor::SrcColor:
             return s[c];
         case BlendFactor::OneMinusSrcColor:
-            return static_cast<uint8_t>(255 - s[c]);
+            return inv(s[c]);
         case BlendFactor::DstColor:
             return d[c];
         case BlendFactor::OneMinusDstColor:
-            return static_cast<uint8_t>(255 - d[c]);
+            return inv(d[c]);
         case BlendFactor::SrcAlpha:
             return s[3];
         case BlendFactor::OneMinusSrcAlpha:
-            return static_cast<uint8_t>(255 - s[3]);
+            return inv(s[3]);
         case BlendFactor::DstAlpha:
             return d[3];
         case BlendFactor::OneMinusDstAlpha:
-            return static_cast<uint8_t>(255 - d[3]);
+            return inv(d[3]);
         case BlendFactor::SrcAlphaSaturate:
-            return c == 3 ? 255 : std::min<uint8_t>(s[3], static_cast<uint8_t>(255 - d[3]));
+            return c == 3 ? one : std::min(s[3], inv(d[3]));
     }
-    return 0;
-}
-
-float FactorF(BlendFactor f, int c, const RgbaF& s, const RgbaF& d) {
-    switch (f) {
-        case BlendFactor::Zero:
-            return 0.0f;
-        case BlendFactor::One:
-            return 1.0f;
-        case BlendFactor::SrcColor:
-            return s[c];
-        case BlendFactor::OneMinusSrcColor:
-            return 1.0f - s[c];
-        case BlendFactor::DstColor:
-            return d[c];
-        case BlendFactor::OneMinusDstColor:
-            return 1.0f - d[c];
-        case BlendFactor::SrcAlpha:
-            return s[3];
-        case BlendFactor::OneMinusSrcAlpha:
-            return 1.0f - s[3];
-        case BlendFactor::DstAlpha:
-            return d[3];
-        case BlendFactor::OneMinusDstAlpha:
-            return 1.0f - d[3];
-        case BlendFactor::SrcAlphaSaturate:
-            return c == 3 ? 1.0f : std::min(s[3], 1.0f - d[3]);
-    }
-    return 0.0f;
+    return T(0);
 }
 
 }  // namespace
@@ -83,8 +58,10 @@ Rgba8 Blend8(const BlendState& st, const Rgba8& s, const Rgba8& d) {
             out[c] = std::max(s[c], d[c]);
             continue;
         }
-        const uint8_t ts = Mul8(s[c], Factor8(alpha ? st.srcAlpha : st.srcRgb, c, s, d));
-        const uint8_t td = Mul8(d[c], Factor8(alpha ? st.dstAlpha : st.dstRgb, c, s, d));
+        const uint8_t ts =
+            Mul8(s[c], Factor<uint8_t>(alpha ? st.srcAlpha : st.srcRgb, c, s, d, 255));
+        const uint8_t td =
+            Mul8(d[c], Factor<uint8_t>(alpha ? st.dstAlpha : st.dstRgb, c, s, d, 255));
         switch (eq) {
             case BlendEquation::Add:
                 out[c] = SatAdd8(ts, td);
@@ -116,8 +93,8 @@ RgbaF BlendF(const BlendState& st, const RgbaF& s, const RgbaF& d) {
             out[c] = std::max(s[c], d[c]);
             continue;
         }
-        const float ts = s[c] * FactorF(alpha ? st.srcAlpha : st.srcRgb, c, s, d);
-        const float td = d[c] * FactorF(alpha ? st.dstAlpha : st.dstRgb, c, s, d);
+        const float ts = s[c] * Factor<float>(alpha ? st.srcAlpha : st.srcRgb, c, s, d, 1.0f);
+        const float td = d[c] * Factor<float>(alpha ? st.dstAlpha : st.dstRgb, c, s, d, 1.0f);
         switch (eq) {
             case BlendEquation::Add:
                 out[c] = ts + td;

@@ -23,22 +23,6 @@ using raster::TextureKind;
 using raster::Vertex;
 using raster::Wrap;
 
-// splitmix64: the same stream as the case format's "random" texel generator.
-struct Rng {
-    uint64_t state;
-    uint64_t Next() {
-        uint64_t z = (state += 0x9E3779B97F4A7C15ull);
-        z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-        z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-        return z ^ (z >> 31);
-    }
-    float Uniform(float a, float b) {
-        const float u = static_cast<float>(Next() >> 40) * (1.0f / 16777216.0f);
-        return a + (b - a) * u;
-    }
-    int Int(int n) { return static_cast<int>(Next() % static_cast<uint64_t>(n)); }
-};
-
 int Log2(int n) {
     int l = 0;
     while ((1 << (l + 1)) <= n) ++l;

@@ -15,22 +15,17 @@ using raster::Pass;
 using raster::Texture;
 using raster::Vertex;
 
-// splitmix64 bytes.
+// splitmix64 bytes (case_generator.h's stream).
 struct Bytes {
-    uint64_t state;
-    uint8_t Next() {
-        uint64_t z = (state += 0x9E3779B97F4A7C15ull);
-        z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-        z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-        return static_cast<uint8_t>((z ^ (z >> 31)) >> 24);
-    }
+    Rng rng;
+    uint8_t Next() { return static_cast<uint8_t>(rng.Next() >> 24); }
 };
 
 Texture RandomCube(int size, uint64_t seed) {
     Texture t;
     t.kind = raster::TextureKind::Cube;
     t.width = t.height = size;
-    Bytes rng{seed};
+    Bytes rng{{seed}};
     for (int n = size; n >= 1; n /= 2) {
         std::vector<uint8_t> level(static_cast<size_t>(6 * n * n * 4));
         for (size_t k = 0; k < level.size(); ++k) level[k] = k % 4 == 3 ? 255 : rng.Next();
