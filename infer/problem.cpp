@@ -2,6 +2,7 @@
 // problem.cpp — assembling the stacked system from raster's rendering matrix (problem.h).
 #include "infer/problem.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -91,10 +92,82 @@ Channels TargetMean(const ImageBlock& blk) {
     return sum;
 }
 
+// Texel -> (level, face, i, j) of a layout, level by level.
+struct TexelCoord {
+    int level = 0;
+    FaceTexel t;
+};
+
+TexelCoord CoordOf(const CubeLayout& layout, uint32_t texel) {
+    int level = 0;
+    while (level + 1 < layout.levels && layout.LevelBase(level + 1) <= texel) ++level;
+    const int n = layout.LevelSize(level);
+    const uint32_t k = texel - layout.LevelBase(level);
+    const auto nn = static_cast<uint32_t>(n) * static_cast<uint32_t>(n);
+    return {level,
+            {static_cast<int>(k / nn), static_cast<int>(k % static_cast<uint32_t>(n)),
+             static_cast<int>((k % nn) / static_cast<uint32_t>(n))}};
+}
+
+// The observed texels grown by `rings` rings of neighbours, as compact indices (-1: not active).
+std::vector<int32_t> ActiveTexels(const CsrMatrix& image, const CubeLayout& layout, int rings,
+                                  std::vector<uint32_t>* active) {
+    const auto count = static_cast<size_t>(layout.TexelCount());
+    std::vector<uint8_t> on(count, 0);
+    for (uint32_t c : image.col) on[c / kChannels] = 1;
+    for (int r = 0; r < rings; ++r) {
+        std::vector<uint8_t> next = on;
+        for (uint32_t t = 0; t < count; ++t) {
+            if (!on[t]) continue;
+            const TexelCoord tc = CoordOf(layout, t);
+            const int n = layout.LevelSize(tc.level);
+            for (Edge e : {Edge::Left, Edge::Right, Edge::Up, Edge::Down}) {
+                const FaceTexel nb = Neighbour(tc.t, e, n);
+                next[layout.Texel(tc.level, nb.face, nb.i, nb.j)] = 1;
+            }
+        }
+        on.swap(next);
+    }
+    std::vector<int32_t> index(count, -1);
+    for (uint32_t t = 0; t < count; ++t)
+        if (on[t]) {
+            index[t] = static_cast<int32_t>(active->size());
+            active->push_back(t);
+        }
+    return index;
+}
+
+// Rows whose columns are all active, with compact columns.
+CsrMatrix RestrictColumns(const CsrMatrix& m, const std::vector<int32_t>& index, int64_t cols) {
+    CsrMatrix out;
+    out.cols = cols;
+    std::vector<uint32_t> rc;
+    std::vector<double> rv;
+    for (int64_t r = 0; r < m.rows; ++r) {
+        rc.clear();
+        rv.clear();
+        bool keep = true;
+        for (int64_t k = m.rowPtr[static_cast<size_t>(r)]; k < m.rowPtr[static_cast<size_t>(r) + 1];
+             ++k) {
+            const uint32_t c = m.col[static_cast<size_t>(k)];
+            const int32_t t = index[c / kChannels];
+            if (t < 0) {
+                keep = false;
+                break;
+            }
+            rc.push_back(static_cast<uint32_t>(t) * kChannels + c % kChannels);
+            rv.push_back(m.val[static_cast<size_t>(k)]);
+        }
+        if (keep) out.AddRow(rc, rv);
+    }
+    return out;
+}
+
 }  // namespace
 
 LinearSystem BuildSystem(const raster::RenderingMatrix& a, const raster::Frame& frame, int texture,
-                         const Target& target, const RegularizerWeights& weights) {
+                         const Target& target, const RegularizerWeights& weights,
+                         const SystemOptions& options) {
     // Check the inputs: a cube map, one target value (and confidence) per row of A.
     const raster::Texture& tex = frame.textures.at(static_cast<size_t>(texture));
     if (tex.kind != raster::TextureKind::Cube)
@@ -114,14 +187,25 @@ LinearSystem BuildSystem(const raster::RenderingMatrix& a, const raster::Frame& 
     if (!IsChannelDiagonal(img.a))
         throw std::invalid_argument("BuildSystem: taps mix colour channels");
     sys.imageRowOf = img.rowOf;
+    sys.imageSqrtWeight = img.sqrtWeight;
     sys.imageWeightSum = img.weightSum;
     sys.priorValue = weights.priorValue ? *weights.priorValue : TargetMean(img);
 
-    // Regularizer blocks (omitted when their weight is 0).
-    const int64_t cols = img.a.cols;
-    const CsrMatrix smooth = weights.smooth > 0 ? SmoothnessRows(sys.layout, cols) : CsrMatrix{};
-    const CsrMatrix pyramid = weights.pyramid > 0 ? PyramidRows(sys.layout, cols) : CsrMatrix{};
-    const CsrMatrix prior = weights.prior > 0 ? PriorRows(sys.layout, cols) : CsrMatrix{};
+    // Regularizer blocks (omitted when their weight is 0), restricted to the active texels.
+    const int64_t fullCols = img.a.cols;
+    CsrMatrix smooth = weights.smooth > 0 ? SmoothnessRows(sys.layout, fullCols) : CsrMatrix{};
+    CsrMatrix pyramid = weights.pyramid > 0 ? PyramidRows(sys.layout, fullCols) : CsrMatrix{};
+    CsrMatrix prior = weights.prior > 0 ? PriorRows(sys.layout, fullCols) : CsrMatrix{};
+    int64_t cols = fullCols;
+    if (options.activeRings >= 0) {
+        const std::vector<int32_t> index =
+            ActiveTexels(img.a, sys.layout, options.activeRings, &sys.active);
+        cols = static_cast<int64_t>(sys.active.size()) * kChannels;
+        img.a = RestrictColumns(img.a, index, cols);
+        if (weights.smooth > 0) smooth = RestrictColumns(smooth, index, cols);
+        if (weights.pyramid > 0) pyramid = RestrictColumns(pyramid, index, cols);
+        if (weights.prior > 0) prior = RestrictColumns(prior, index, cols);
+    }
     std::vector<RowBlock> blocks{{&img.a, 1.0, &img.sqrtWeight}};
     if (weights.smooth > 0) blocks.push_back({&smooth, std::sqrt(weights.smooth), nullptr});
     if (weights.pyramid > 0) blocks.push_back({&pyramid, std::sqrt(weights.pyramid), nullptr});
@@ -147,6 +231,24 @@ LinearSystem BuildSystem(const raster::RenderingMatrix& a, const raster::Frame& 
 Vector InitialGuess(const LinearSystem& system) {
     Vector x(static_cast<size_t>(system.Cols()));
     for (size_t j = 0; j < x.size(); ++j) x[j] = system.priorValue[j % kChannels];
+    return x;
+}
+
+Vector SplatGuess(const LinearSystem& system, double lo, double hi, int threads) {
+    // Step 1: K^T over the image rows of h and of sqrt(w): sum w a b and sum w a per column.
+    const size_t rows = static_cast<size_t>(system.k.Rows());
+    Vector hImage(rows, 0.0), wImage(rows, 0.0);
+    for (int64_t r = 0; r < system.imageRows; ++r) {
+        hImage[static_cast<size_t>(r)] = system.h[static_cast<size_t>(r)];
+        wImage[static_cast<size_t>(r)] = system.imageSqrtWeight[static_cast<size_t>(r)];
+    }
+    Vector num, den;
+    system.k.ApplyTranspose(hImage, &num, threads);
+    system.k.ApplyTranspose(wImage, &den, threads);
+    // Step 2: their ratio, the prior where nothing is seen.
+    Vector x = InitialGuess(system);
+    for (size_t j = 0; j < x.size(); ++j)
+        if (den[j] > 0.0) x[j] = std::clamp(num[j] / den[j], lo, hi);
     return x;
 }
 
@@ -182,6 +284,113 @@ double MaskedImageRmse(const LinearSystem& system, const Vector& x, int threads)
         sum += d * d;
     }
     return system.imageWeightSum > 0.0 ? std::sqrt(sum / system.imageWeightSum) : 0.0;
+}
+
+Vector FillUnobserved(const LinearSystem& system, const Vector& x, int64_t* filled) {
+    const CubeLayout& layout = system.layout;
+    const auto count = static_cast<size_t>(layout.TexelCount());
+    if (system.active.empty()) {
+        if (filled) *filled = 0;
+        return x;
+    }
+    Vector full(count * kChannels, 0.0);
+    std::vector<uint8_t> known(count, 0);
+    for (size_t k = 0; k < system.active.size(); ++k) {
+        const size_t t = system.active[k];
+        for (size_t c = 0; c < kChannels; ++c) full[t * kChannels + c] = x[k * kChannels + c];
+        known[t] = 1;
+    }
+    int64_t fills = 0;
+    // Step 1: breadth-first within each level that has unknowns.
+    std::vector<uint8_t> levelDone(static_cast<size_t>(layout.levels), 0);
+    for (int l = 0; l < layout.levels; ++l) {
+        const uint32_t b = layout.LevelBase(l), e = layout.LevelBase(l + 1);
+        const int n = layout.LevelSize(l);
+        std::vector<uint32_t> frontier;
+        for (uint32_t t = b; t < e; ++t)
+            if (known[t]) frontier.push_back(t);
+        if (frontier.empty()) continue;
+        levelDone[static_cast<size_t>(l)] = 1;
+        while (!frontier.empty()) {
+            // The next ring: unknown neighbours of the frontier, in texel order.
+            std::vector<uint32_t> ring;
+            for (uint32_t t : frontier) {
+                const TexelCoord tc = CoordOf(layout, t);
+                for (Edge ed : {Edge::Left, Edge::Right, Edge::Up, Edge::Down}) {
+                    const FaceTexel nb = Neighbour(tc.t, ed, n);
+                    const uint32_t u = layout.Texel(l, nb.face, nb.i, nb.j);
+                    if (!known[u]) ring.push_back(u);
+                }
+            }
+            std::sort(ring.begin(), ring.end());
+            ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
+            // Each the mean of its neighbours filled before this ring.
+            std::vector<double> values(ring.size() * kChannels, 0.0);
+            for (size_t r = 0; r < ring.size(); ++r) {
+                const TexelCoord tc = CoordOf(layout, ring[r]);
+                int m = 0;
+                for (Edge ed : {Edge::Left, Edge::Right, Edge::Up, Edge::Down}) {
+                    const FaceTexel nb = Neighbour(tc.t, ed, n);
+                    const uint32_t u = layout.Texel(l, nb.face, nb.i, nb.j);
+                    if (!known[u]) continue;
+                    ++m;
+                    for (size_t c = 0; c < kChannels; ++c)
+                        values[r * kChannels + c] += full[size_t{u} * kChannels + c];
+                }
+                for (size_t c = 0; c < kChannels; ++c) values[r * kChannels + c] /= m;
+            }
+            for (size_t r = 0; r < ring.size(); ++r) {
+                for (size_t c = 0; c < kChannels; ++c)
+                    full[size_t{ring[r]} * kChannels + c] = values[r * kChannels + c];
+                known[ring[r]] = 1;
+            }
+            fills += static_cast<int64_t>(ring.size());
+            frontier.swap(ring);
+        }
+    }
+    // Step 2: levels without unknowns from their neighbours in the pyramid.
+    auto copyLevel = [&](int l, int from) {
+        const int n = layout.LevelSize(l), nf = layout.LevelSize(from);
+        for (int f = 0; f < 6; ++f)
+            for (int j = 0; j < n; ++j)
+                for (int i = 0; i < n; ++i) {
+                    const size_t t = layout.Texel(l, f, i, j);
+                    for (size_t c = 0; c < kChannels; ++c) {
+                        double v = 0.0;
+                        if (from < l) {  // finer: mean of the four children
+                            const int s = nf / n;
+                            for (int dj = 0; dj < s; ++dj)
+                                for (int di = 0; di < s; ++di)
+                                    v +=
+                                        full[size_t{layout.Texel(from, f, i * s + di, j * s + dj)} *
+                                                 kChannels +
+                                             c];
+                            v /= s * s;
+                        } else {  // coarser: the parent
+                            const int s = n / nf;
+                            v = full[size_t{layout.Texel(from, f, i / s, j / s)} * kChannels + c];
+                        }
+                        full[t * kChannels + c] = v;
+                    }
+                }
+        fills += 6 * n * n;
+        levelDone[static_cast<size_t>(l)] = 1;
+    };
+    for (int l = 1; l < layout.levels; ++l)
+        if (!levelDone[static_cast<size_t>(l)] && levelDone[static_cast<size_t>(l - 1)])
+            copyLevel(l, l - 1);
+    for (int l = layout.levels - 2; l >= 0; --l)
+        if (!levelDone[static_cast<size_t>(l)] && levelDone[static_cast<size_t>(l + 1)])
+            copyLevel(l, l + 1);
+    for (int l = 0; l < layout.levels; ++l)
+        if (!levelDone[static_cast<size_t>(l)]) {
+            for (uint32_t t = layout.LevelBase(l); t < layout.LevelBase(l + 1); ++t)
+                for (size_t c = 0; c < kChannels; ++c)
+                    full[size_t{t} * kChannels + c] = system.priorValue[c];
+            fills += layout.LevelBase(l + 1) - layout.LevelBase(l);
+        }
+    if (filled) *filled = fills;
+    return full;
 }
 
 }  // namespace pem::infer

@@ -43,6 +43,15 @@ struct Target {
     Vector confidence;  // w >= 0 per row; empty = 1 everywhere
 };
 
+// How the unknowns are chosen.
+struct SystemOptions {
+    // < 0: every texel of every level is an unknown. >= 0: only the texels some kept image row
+    // taps, grown by this many rings of neighbours within their level (regularizer.h adjacency);
+    // regularizer rows that touch a texel outside the set are dropped, and FillUnobserved
+    // completes the map afterwards.
+    int activeRings = -1;
+};
+
 struct LinearSystem {
     SparseOperator k;                 // the stacked K
     Vector h;                         // the stacked right-hand side
@@ -51,15 +60,31 @@ struct LinearSystem {
     std::vector<int64_t> imageRowOf;  // image row -> row of the rendering matrix
     CubeLayout layout;                // unknowns, numbered from 0
     uint32_t globalFirstTexel = 0;    // raster's index of the unknown texture's first texel
+    std::vector<uint32_t> active;     // unknown k is local texel active[k]; empty: all texels
+    Vector imageSqrtWeight;           // sqrt(w) per image row
     Channels priorValue{};            // xbar per channel
     int64_t Cols() const { return k.Cols(); }
 };
 
 LinearSystem BuildSystem(const raster::RenderingMatrix& a, const raster::Frame& frame, int texture,
-                         const Target& target, const RegularizerWeights& weights);
+                         const Target& target, const RegularizerWeights& weights,
+                         const SystemOptions& options = {});
+
+// The solution over every local texel (4 per texel): unknowns copied, the other texels filled
+// smoothly — within a level that has unknowns, breadth-first from them, each texel the mean of
+// its already filled neighbours; a level without unknowns from the nearest filled level (mean
+// of the four children going coarser, the parent going finer); nothing observed at all: the
+// prior value. `filled` (optional) receives the number of texels filled.
+Vector FillUnobserved(const LinearSystem& system, const Vector& x, int64_t* filled = nullptr);
 
 // xbar in every texel (the default starting point of the solvers).
 Vector InitialGuess(const LinearSystem& system);
+
+// The splatted start: each texel the weighted mean of the target over the image rows that tap
+// it, sum_r w a_rj b_r / sum_r w a_rj (xbar where no row taps it), clamped into [lo, hi]. For
+// a smooth map this is already close to the least-squares solution, so the solver starts near
+// the end (the back-projection of the image onto the texels).
+Vector SplatGuess(const LinearSystem& system, double lo, double hi, int threads);
 
 // Texel values of every texture of a frame as raster's columns: bytes / 255.
 Vector TexelVector(const raster::Frame& frame);

@@ -5,9 +5,11 @@
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
+#include <ImfInputFile.h>
 #include <ImfOutputFile.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdio>
 #include <exception>
 
@@ -68,6 +70,42 @@ void WriteExr(const std::string& path, const FloatImage& image) {
         std::remove(tmp.c_str());
         throw InputError(path, "cannot rename the temporary file");
     }
+}
+
+FloatImage ReadExr(const std::string& path) {
+    FloatImage image;
+    try {
+        Imf::InputFile file(path.c_str());
+        const Imath::Box2i dw = file.header().dataWindow();
+        const int w = dw.max.x - dw.min.x + 1, h = dw.max.y - dw.min.y + 1;
+        const Imf::ChannelList& ch = file.header().channels();
+        int channels = 0;
+        if (ch.findChannel("R") && ch.findChannel("G") && ch.findChannel("B"))
+            channels = ch.findChannel("A") ? 4 : 3;
+        else if (ch.findChannel("Y"))
+            channels = 1;
+        else
+            throw InputError(path, "no Y or R,G,B channels");
+        image = FloatImage(w, h, channels);
+        Imf::FrameBuffer frame;
+        const size_t xStride = sizeof(float) * static_cast<size_t>(channels);
+        char* base = reinterpret_cast<char*>(image.data.data()) -
+                     (static_cast<ptrdiff_t>(dw.min.x) + static_cast<ptrdiff_t>(dw.min.y) * w) *
+                         static_cast<ptrdiff_t>(xStride);
+        for (int c = 0; c < channels; ++c)
+            frame.insert(ChannelName(channels, c),
+                         Imf::Slice(Imf::FLOAT, base + sizeof(float) * static_cast<size_t>(c),
+                                    xStride, xStride * static_cast<size_t>(w)));
+        file.setFrameBuffer(frame);
+        file.readPixels(dw.min.y, dw.max.y);
+    } catch (const InputError&) {
+        throw;
+    } catch (const std::exception& e) {
+        throw InputError(path, std::string("cannot read OpenEXR: ") + e.what());
+    }
+    for (float v : image.data)
+        if (!std::isfinite(v)) throw InputError(path, "non-finite pixel value");
+    return image;
 }
 
 }  // namespace pem::trace

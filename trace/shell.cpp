@@ -154,7 +154,14 @@ std::optional<ShellHit> Intersect(const Shell& s, const Ray& ray) {
 std::optional<glm::vec3> CubeLookup(const Shell& s, const Ray& ray, const glm::dvec3& emOrigin) {
     const std::optional<ShellHit> hit = Intersect(s, ray);
     if (!hit) return std::nullopt;
-    return glm::vec3(hit->point - emOrigin);
+    return LookupVector(hit->point - emOrigin);
+}
+
+glm::vec3 LookupVector(const glm::dvec3& d) {
+    // A cube lookup needs only the direction: scale vectors beyond float range down (a plane hit
+    // of a nearly parallel ray lies at 1/cos, up to ~1e45) before the conversion to float.
+    const double m = std::max({std::abs(d.x), std::abs(d.y), std::abs(d.z)});
+    return m > 1e30 ? glm::vec3(d / m) : glm::vec3(d);
 }
 
 double Volume(const SphereShell& s) {

@@ -79,6 +79,8 @@ std::optional<ShellHit> Intersect(const QuadShell& s, const Ray& ray);  // never
 std::optional<ShellHit> Intersect(const Shell& s, const Ray& ray);
 
 // Step: the cube-map index, hit point minus the EM origin (nullopt when the ray misses the shell).
+// A double lookup vector as float, scaled down (direction kept) when beyond float range.
+glm::vec3 LookupVector(const glm::dvec3& d);
 std::optional<glm::vec3> CubeLookup(const Shell& s, const Ray& ray, const glm::dvec3& emOrigin);
 
 // Step: fits. `points` are intersection points (or mesh vertices for the local layer).

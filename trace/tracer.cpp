@@ -298,6 +298,13 @@ GreedySample Tracer::TraceGreedy(const Ray& ray, const Hit& first, int group,
     return sample;
 }
 
+std::optional<GreedyPaths> Tracer::GreedyPathsAt(const Ray& ray, const Hit& first, int group,
+                                                 RayCounts& counts) const {
+    std::vector<GroupHits::Exit> exits;
+    GroupHits hits(*this, group, first, counts, exits);
+    return TraceGreedyPaths(ray, hits, options_.fullTreeDepth, options_.minWeight);
+}
+
 Tracer::DiffusePoint Tracer::DiffuseAt(const Ray& ray, const Hit& hit) const {
     const Object& obj = scene_.objects[static_cast<size_t>(hit.object)];
     const SurfacePoint sp = SurfaceAt(obj, hit.prim, hit.u, hit.v);

@@ -29,6 +29,7 @@
 #include <cstdint>
 #include <deque>
 #include <glm/glm.hpp>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -115,6 +116,10 @@ class Tracer {
     // Greedy paths for lens group `group` from its hit `first` along `ray` (which may lie
     // behind occluders: continued incoming rays).
     GreedySample TraceGreedy(const Ray& ray, const Hit& first, int group, RayCounts& counts) const;
+    // The same two greedy paths without their exit radiance (run-time texgen needs only the
+    // exit rays and F, G); nullopt when `first` is not a hit of the group.
+    std::optional<GreedyPaths> GreedyPathsAt(const Ray& ray, const Hit& first, int group,
+                                             RayCounts& counts) const;
 
     // The surface of a lens hit as ray_path.h sees it.
     SurfaceHit MakeSurfaceHit(const Ray& ray, const Hit& hit) const;

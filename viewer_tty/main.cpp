@@ -15,6 +15,8 @@
 
 #include "raster/render.h"
 #include "viewer_tty/case_file.h"
+#include "viewer_tty/cmd_infer.h"
+#include "viewer_tty/cmd_stability.h"
 #include "viewer_tty/cmd_trace.h"
 #include "viewer_tty/input_error.h"
 #include "viewer_tty/matrix_market.h"
@@ -115,6 +117,8 @@ int main(int argc, char** argv) {
     RasterArgs rasterArgs;
     AddRaster(app, rasterArgs);
     cli::AddTraceCommand(app);
+    cli::AddInferCommand(app);
+    cli::AddStabilityCommand(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {
@@ -126,6 +130,8 @@ int main(int argc, char** argv) {
     try {
         if (app.got_subcommand("raster")) return RunRaster(rasterArgs);
         if (app.got_subcommand("trace")) return cli::RunTraceCommand();
+        if (app.got_subcommand("infer")) return cli::RunInferCommand();
+        if (app.got_subcommand("stability")) return cli::RunStabilityCommand();
     } catch (const std::exception& e) {
         std::fprintf(stderr, "pemref: %s\n", e.what());
         return 1;

@@ -1,0 +1,424 @@
+// SPDX-License-Identifier: MIT
+// infer_run.cpp — `pemref infer`: trace directory → PEM files (infer_run.h).
+#include "infer/infer_run.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "infer/cube_map.h"
+#include "infer/pem_file.h"
+#include "raster/render.h"
+#include "runtime/lens_paths.h"
+#include "runtime/texgen.h"
+#include "trace/embree_scene.h"
+#include "trace/image.h"
+#include "trace/scene.h"
+#include "trace/tracer.h"
+#include "viewer_tty/input_error.h"
+#include "viewer_tty/png_io.h"
+
+namespace pem::infer {
+namespace {
+
+using nlohmann::json;
+using Clock = std::chrono::steady_clock;
+
+double Since(Clock::time_point t0) {
+    return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+// trace.json ------------------------------------------------------------------------------------
+
+glm::dvec3 Vec3(const json& j) {
+    return {j.at(0).get<double>(), j.at(1).get<double>(), j.at(2).get<double>()};
+}
+
+trace::Shell ShellFrom(const json& j) {
+    const std::string type = j.at("type").get<std::string>();
+    if (type == "sphere")
+        return trace::SphereShell{Vec3(j.at("centre")), j.at("radius").get<double>()};
+    if (type == "ellipsoid")
+        return trace::EllipsoidShell{Vec3(j.at("centre")), Vec3(j.at("radii"))};
+    if (type == "box") return trace::BoxShell{Vec3(j.at("min")), Vec3(j.at("max"))};
+    if (type == "quad") {
+        trace::QuadShell q;
+        q.centre = Vec3(j.at("centre"));
+        q.normal = Vec3(j.at("normal"));
+        q.u = Vec3(j.at("u"));
+        q.v = Vec3(j.at("v"));
+        q.halfExtent = {j.at("half_extent").at(0).get<double>(),
+                        j.at("half_extent").at(1).get<double>()};
+        return q;
+    }
+    throw std::runtime_error("unknown shell type \"" + type + "\"");
+}
+
+// Files ------------------------------------------------------------------------------------------
+
+std::string ViewDir(int v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "view_%03d", v);
+    return buf;
+}
+
+// The 8-bit copy as one PNG: each level's six faces side by side, levels stacked.
+void WriteTexturePng(const raster::Texture& tex, const std::string& path) {
+    int height = 0;
+    for (int l = 0; l < tex.NumLevels(); ++l) height += tex.LevelHeight(l);
+    raster::Image8 img{6 * tex.width, height, {}};
+    img.rgba.assign(static_cast<size_t>(img.width) * static_cast<size_t>(img.height) * 4, 0);
+    int y0 = 0;
+    for (int l = 0; l < tex.NumLevels(); ++l) {
+        const int n = tex.LevelWidth(l);
+        for (int f = 0; f < 6; ++f)
+            for (int j = 0; j < n; ++j)
+                for (int i = 0; i < n; ++i)
+                    for (int c = 0; c < 4; ++c)
+                        img.rgba[(static_cast<size_t>(y0 + j) * static_cast<size_t>(img.width) +
+                                  static_cast<size_t>(f * n + i)) *
+                                     4 +
+                                 static_cast<size_t>(c)] =
+                            tex.levels[static_cast<size_t>(l)]
+                                      [((static_cast<size_t>(f) * n + j) * n + i) * 4 + c];
+        y0 += n;
+    }
+    cli::WritePng(path, img);
+}
+
+void WriteMatrixMarket(const std::string& path, const CsrMatrix& m) {
+    const std::string tmp = path + ".tmp";
+    {
+        std::ofstream f(tmp);
+        f << "%%MatrixMarket matrix coordinate real general\n";
+        f << m.rows << " " << m.cols << " " << m.NonZeros() << "\n";
+        f.precision(17);
+        for (int64_t r = 0; r < m.rows; ++r)
+            for (int64_t k = m.rowPtr[static_cast<size_t>(r)];
+                 k < m.rowPtr[static_cast<size_t>(r) + 1]; ++k)
+                f << r + 1 << " " << m.col[static_cast<size_t>(k)] + 1 << " "
+                  << m.val[static_cast<size_t>(k)] << "\n";
+        if (!f) throw InputError(path, "cannot write");
+    }
+    std::filesystem::rename(tmp, path);
+}
+
+void WriteVectorMarket(const std::string& path, const Vector& v) {
+    const std::string tmp = path + ".tmp";
+    {
+        std::ofstream f(tmp);
+        f << "%%MatrixMarket matrix array real general\n" << v.size() << " 1\n";
+        f.precision(17);
+        for (double x : v) f << x << "\n";
+        if (!f) throw InputError(path, "cannot write");
+    }
+    std::filesystem::rename(tmp, path);
+}
+
+// One map's solve ----------------------------------------------------------------------------
+
+struct MapInput {
+    const trace::FloatImage* layer = nullptr;     // RGBA premultiplied layer image
+    const trace::FloatImage* coverage = nullptr;  // alpha = lens coverage
+    const trace::FloatImage* confidence = nullptr;
+    raster::Pass pass;
+};
+
+raster::Frame UnknownFrame(int width, int height, int res) {
+    raster::Frame frame;
+    frame.width = width;
+    frame.height = height;
+    frame.depthClamp = true;
+    raster::Texture tex;
+    tex.kind = raster::TextureKind::Cube;
+    tex.width = tex.height = res;
+    for (int l = 0; (res >> l) >= 1; ++l)
+        tex.levels.emplace_back(static_cast<size_t>(6 * (res >> l) * (res >> l) * 4), 0);
+    frame.textures.push_back(std::move(tex));
+    return frame;
+}
+
+// Target rows 4 * (y W + x) + c: the layer un-premultiplied by coverage (clamped into [0, 1]
+// for 8-bit maps: what they can reach), weight conf · coverage.
+Target MakeTarget(const MapInput& in, int width, int height, bool hdr) {
+    Target t;
+    const size_t n = static_cast<size_t>(width) * static_cast<size_t>(height);
+    t.b.assign(n * 4, 0.0);
+    t.confidence.assign(n * 4, 0.0);
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            const size_t p =
+                static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x);
+            const double cov = static_cast<double>(in.coverage->At(x, y)[3]);
+            if (!(cov > 1e-6)) continue;
+            const double conf =
+                in.confidence ? static_cast<double>(in.confidence->At(x, y)[0]) : 1.0;
+            for (size_t c = 0; c < 4; ++c) {
+                const double v = static_cast<double>(in.layer->At(x, y)[c]) / cov;
+                t.b[4 * p + c] = hdr ? v : std::clamp(v, 0.0, 1.0);
+                t.confidence[4 * p + c] = conf * cov;
+            }
+        }
+    return t;
+}
+
+MapReport SolveMap(const MapInput& in, const InferRunOptions& opt, const TraceManifest& tm,
+                   const std::string& dir, MapReport rep) {
+    const int w = tm.width, h = tm.height;
+    // Step 1: the rendering matrix of the texgen pass.
+    const auto t0 = Clock::now();
+    raster::Frame frame = UnknownFrame(w, h, opt.res);
+    frame.passes.push_back(in.pass);
+    raster::RenderOptions ro;
+    ro.profile = raster::Profile::Linear;
+    ro.threads = opt.threads;
+    const raster::RenderingMatrix a =
+        raster::BuildRenderingMatrix(raster::PreparedFrame(frame), ro);
+    // Step 2: the stacked system over the active texels.
+    const Target target = MakeTarget(in, w, h, opt.hdr);
+    const LinearSystem sys = BuildSystem(a, frame, 0, target, opt.weights, opt.system);
+    rep.buildSeconds = Since(t0);
+    rep.rows = sys.k.Rows();
+    rep.cols = sys.Cols();
+    rep.nnz = sys.k.A().NonZeros();
+    rep.observedTexels = static_cast<int64_t>(sys.active.size());
+    // Step 3: the solve.
+    SolveOptions so = opt.solve;
+    so.threads = opt.threads;
+    so.bounds = opt.hdr ? Bounds::Hdr() : Bounds::Unit();
+    const SolveResult res =
+        SolveIterative(sys, SplatGuess(sys, so.bounds.lo, so.bounds.hi, opt.threads), so);
+    rep.solveSeconds = res.seconds;
+    rep.iterations = res.iterations;
+    rep.stop = ToString(res.stop);
+    rep.rmse = MaskedImageRmse(sys, res.x, opt.threads);
+    {
+        Vector kx;
+        sys.k.Apply(res.x, &kx, opt.threads);
+        double obj = 0.0;
+        for (size_t r = 0; r < kx.size(); ++r) obj += (kx[r] - sys.h[r]) * (kx[r] - sys.h[r]);
+        rep.objective = obj;
+    }
+    const Vector full = FillUnobserved(sys, res.x, &rep.filledTexels);
+    const CubeMapF map = CubeMapFromSolution(full, sys.layout);
+    rep.texelMin = rep.texelMax = full.empty() ? 0.0 : full[0];
+    for (double v : full)
+        rep.texelMin = std::min(rep.texelMin, v), rep.texelMax = std::max(rep.texelMax, v);
+    // Step 4: rmse_8bit — the 8-bit copy through the llvmpipe profile, on the system's mask.
+    auto rmse8 = [&](const CubeMapF& m) {
+        raster::Frame f8 = frame;
+        f8.textures[0] = ToTexture8(m, frame.textures[0].sampler);
+        const raster::RenderResult rr = raster::Render(raster::PreparedFrame(f8), {});
+        double sum = 0.0;
+        for (int64_t r : sys.imageRowOf) {
+            const double d =
+                rr.image8.rgba[static_cast<size_t>(r)] / 255.0 - target.b[static_cast<size_t>(r)];
+            sum += target.confidence[static_cast<size_t>(r)] * d * d;
+        }
+        return sys.imageWeightSum > 0.0 ? std::sqrt(sum / sys.imageWeightSum) : 0.0;
+    };
+    rep.rmse8 = rmse8(map);
+    if (opt.direct && sys.Cols() <= opt.directMaxCols) {
+        const SolveResult d = SolveDirect(sys, InitialGuess(sys), so.columnFloor);
+        rep.directSeconds = d.seconds;
+        rep.directRmse8 = rmse8(CubeMapFromSolution(FillUnobserved(sys, d.x), sys.layout));
+    }
+    // Step 5: files.
+    const std::string stem = dir + "/" + rep.name;
+    WriteCubeMapExr(map, stem + ".exr");
+    WriteTexturePng(ToTexture8(map, frame.textures[0].sampler), stem + ".png");
+    WriteLogCsv(res.log, stem + ".csv");
+    if (!opt.exportDir.empty()) {
+        char prefix[64];
+        std::snprintf(prefix, sizeof prefix, "/v%03d_g%d_%s", rep.view, rep.group,
+                      rep.name.c_str());
+        const std::string base = opt.exportDir + prefix;
+        WriteMatrixMarket(base + "_K.mtx", sys.k.A());
+        WriteVectorMarket(base + "_h.mtx", sys.h);
+        WriteVectorMarket(base + "_x.mtx", res.x);
+        std::ofstream(base + ".json") << json{{"objective", rep.objective},
+                                              {"bounds", opt.hdr ? "hdr" : "unit"},
+                                              {"iterations", rep.iterations},
+                                              {"solve_seconds", rep.solveSeconds},
+                                              {"rows", rep.rows},
+                                              {"cols", rep.cols}}
+                                             .dump(2)
+                                      << "\n";
+    }
+    return rep;
+}
+
+}  // namespace
+
+TraceManifest ReadTraceManifest(const std::string& traceDir) {
+    const std::string path = traceDir + "/trace.json";
+    std::ifstream f(path);
+    if (!f) throw InputError(path, "cannot open (run pemref trace first)");
+    TraceManifest tm;
+    tm.dir = traceDir;
+    try {
+        const json j = json::parse(f);
+        tm.scenePath = j.at("scene").get<std::string>();
+        const std::string size = j.at("size").get<std::string>();
+        if (std::sscanf(size.c_str(), "%dx%d", &tm.width, &tm.height) != 2 || tm.width < 1 ||
+            tm.height < 1)
+            throw std::runtime_error("bad size \"" + size + "\"");
+        tm.spp = j.at("spp").get<int>();
+        for (const json& v : j.at("views")) {
+            raster::Camera c;
+            c.eye = glm::vec3(Vec3(v.at("eye")));
+            c.target = glm::vec3(Vec3(v.at("target")));
+            tm.views.push_back(c);
+        }
+        int index = 0;
+        for (const json& g : j.at("lens_groups")) {
+            TracedGroup tg;
+            tg.index = index++;
+            tg.objects = g.at("objects").get<std::vector<std::string>>();
+            tg.glass = g.at("glass").get<bool>();
+            tg.emOrigin = glm::vec3(Vec3(g.at("em_origin")));
+            for (const json& l : g.at("layers"))
+                tg.layers.push_back(
+                    {ShellFrom(l.at("shell")), l.at("shell").at("type").get<std::string>()});
+            if (g.contains("pem_local_distant")) {
+                tg.pem = true;
+                tg.localShell = ShellFrom(g.at("pem_local_distant").at("local"));
+                tg.distantShell = ShellFrom(g.at("pem_local_distant").at("distant"));
+            }
+            tm.groups.push_back(std::move(tg));
+        }
+    } catch (const json::exception& e) {
+        throw InputError(path, std::string("malformed trace.json: ") + e.what());
+    } catch (const std::runtime_error& e) {
+        throw InputError(path, e.what());
+    }
+    return tm;
+}
+
+InferRunReport RunInfer(const InferRunOptions& opt) {
+    const auto tStart = Clock::now();
+    if (opt.res < 1 || (opt.res & (opt.res - 1)) != 0 || opt.res > 4096)
+        throw InputError("--res " + std::to_string(opt.res),
+                         "expected a power of two in [1, 4096]");
+    InferRunReport report;
+    report.trace = ReadTraceManifest(opt.traceDir);
+    const TraceManifest& tm = report.trace;
+
+    // Step 1: the scene, its BVH and the tracer (as the trace was made).
+    std::string scenePath = tm.scenePath;
+    if (!std::filesystem::exists(scenePath))
+        throw InputError(scenePath, "scene of the trace not found");
+    const trace::Scene scene = trace::LoadScene(scenePath);
+    if (!scene.camera) throw InputError(scenePath, "no camera node");
+    if (scene.lensGroups.size() != tm.groups.size())
+        throw InputError(opt.traceDir + "/trace.json", "lens groups differ from the scene's");
+    const trace::EmbreeDevice device({opt.threads, "auto"});
+    const trace::EmbreeScene embree(device, scene);
+    const trace::Tracer tracer(scene, embree);
+
+    std::vector<int> views = opt.views;
+    if (views.empty())
+        for (int v = 0; v < static_cast<int>(tm.views.size()); ++v) views.push_back(v);
+    int mapsTotal = 0;
+    for (const TracedGroup& g : tm.groups)
+        mapsTotal += static_cast<int>(g.layers.size()) * (g.glass ? 2 : 1) + (g.pem ? 2 : 0);
+    mapsTotal *= static_cast<int>(views.size());
+    int mapsDone = 0;
+
+    for (int v : views) {
+        if (v < 0 || v >= static_cast<int>(tm.views.size()))
+            throw InputError("--view " + std::to_string(v), "no such viewpoint in the trace");
+        const auto tView = Clock::now();
+        SampleReport sample;
+        sample.view = v;
+        raster::Camera camera = trace::CameraForSize(*scene.camera, tm.width, tm.height);
+        camera.eye = tm.views[static_cast<size_t>(v)].eye;
+        camera.target = tm.views[static_cast<size_t>(v)].target;
+        for (const TracedGroup& g : tm.groups) {
+            const std::string gdir =
+                opt.traceDir + "/" + ViewDir(v) + "/group_" + std::to_string(g.index);
+            const std::string odir =
+                opt.outDir + "/" + ViewDir(v) + "/group_" + std::to_string(g.index);
+            std::filesystem::create_directories(odir);
+            // Step 2: the vertex paths at this sample.
+            const auto tPaths = Clock::now();
+            runtime::LensPathsOptions lo;
+            lo.tess.maxEdgeSubpixels = opt.tessT;
+            lo.supersampling = tm.spp;
+            lo.threads = opt.threads;
+            const runtime::LensPaths lp =
+                runtime::TraceLensPaths(tracer, embree, camera, g.index, lo);
+            sample.pathSeconds += Since(tPaths);
+            sample.vertexRays += lp.counts.Total();
+            sample.triangles += lp.tess.triangles.size();
+            const runtime::PassMesh mesh = runtime::MeshOf(lp.tess);
+            const std::vector<uint32_t> order = runtime::DrawOrder(mesh, camera);
+            const glm::mat4 vp = runtime::PassViewProjection(mesh, camera);
+            // Step 3: one map per term and layer.
+            for (int term = 0; term < (g.glass ? 2 : 1); ++term) {
+                const char* tn = term == 0 ? "R" : "T";
+                const trace::FloatImage cov = trace::ReadExr(gdir + "/b_" + tn + ".exr");
+                const trace::FloatImage conf = trace::ReadExr(gdir + "/confidence_" + tn + ".exr");
+                const std::vector<runtime::ExitRay> exits = runtime::TermExits(lp.tess.paths, term);
+                for (size_t l = 0; l < g.layers.size(); ++l) {
+                    const trace::FloatImage layer =
+                        trace::ReadExr(gdir + "/layer_" + std::to_string(l) + "_" + tn + ".exr");
+                    MapInput in{&layer, &cov, &conf, {}};
+                    in.pass = runtime::LayerPass(
+                        mesh, order, runtime::ShellCoords(exits, g.layers[l].shell, g.emOrigin),
+                        exits, vp, {});
+                    MapReport rep;
+                    rep.view = v, rep.group = g.index, rep.layer = static_cast<int>(l),
+                    rep.term = tn;
+                    rep.name = std::string(tn) + "_layer_" + std::to_string(l);
+                    if (opt.progress)
+                        opt.progress(rep.name, static_cast<double>(mapsDone) / mapsTotal);
+                    report.maps.push_back(SolveMap(in, opt, tm, odir, rep));
+                    ++mapsDone;
+                }
+            }
+            // Step 4: mirror-only groups: the PEM paper's local/distant split.
+            if (g.pem) {
+                const runtime::LensMesh base = runtime::GroupMesh(scene, g.index);
+                const runtime::PassMesh bm = runtime::MeshOf(base);
+                const trace::Material& mat = scene.materials[static_cast<size_t>(
+                    scene
+                        .objects[static_cast<size_t>(
+                            scene.lensGroups[static_cast<size_t>(g.index)].objects[0])]
+                        .material)];
+                const std::vector<runtime::ExitRay> exits =
+                    runtime::ReflectionExits(bm, camera.eye, mat.baseColor);
+                const std::vector<uint32_t> border = runtime::DrawOrder(bm, camera);
+                const glm::mat4 bvp = runtime::PassViewProjection(bm, camera);
+                const trace::FloatImage distant = trace::ReadExr(gdir + "/distant.exr");
+                const trace::FloatImage local = trace::ReadExr(gdir + "/local.exr");
+                const trace::FloatImage conf = trace::ReadExr(gdir + "/confidence_R.exr");
+                for (int which = 0; which < 2; ++which) {
+                    MapInput in{which == 0 ? &local : &distant, &distant, &conf, {}};
+                    in.pass = runtime::LayerPass(
+                        bm, border,
+                        runtime::ShellCoords(exits, which == 0 ? g.localShell : g.distantShell,
+                                             g.emOrigin),
+                        exits, bvp, {});
+                    MapReport rep;
+                    rep.view = v, rep.group = g.index, rep.layer = which, rep.term = "pem";
+                    rep.name = which == 0 ? "pem_local" : "pem_distant";
+                    if (opt.progress)
+                        opt.progress(rep.name, static_cast<double>(mapsDone) / mapsTotal);
+                    report.maps.push_back(SolveMap(in, opt, tm, odir, rep));
+                    ++mapsDone;
+                }
+            }
+        }
+        sample.seconds = Since(tView);
+        report.samples.push_back(sample);
+    }
+    if (opt.progress) opt.progress("done", 1.0);
+    report.seconds = Since(tStart);
+    return report;
+}
+
+}  // namespace pem::infer

@@ -1,0 +1,55 @@
+// SPDX-License-Identifier: MIT
+// lens_paths.h — per-vertex greedy ray paths of one lens group seen from one camera, on the
+// adaptively tessellated mesh (hybrid §5): the vertex rays the run-time renderer and the
+// inference's texgen both start from.
+//
+//   LensPaths lp = TraceLensPaths(tracer, embree, camera, group, {});
+//   // lp.tess.positions / normals / triangles / paths: the refined mesh and each vertex's paths
+//
+// Vertex rays: the ray from the eye to the vertex, intersected from just before the vertex
+// (tnear = 0.999 · distance), so a vertex hidden behind another part of the object still gets
+// its own surface; when that misses the group (a silhouette vertex grazed by float error), the
+// group's first hit along the ray is used (segment.h IncomingHit). From that hit the two greedy
+// paths (Tracer::GreedyPathsAt). A vertex with no group hit gets paths with F = 0.
+// Parallelism: the input vertices are traced first on `threads` threads (disjoint chunks), the
+// vertices the tessellation creates on the calling thread; the result is the same for any
+// thread count.
+// Not here: texture coordinates and passes (texgen.h), the renderer (renderer.h).
+#pragma once
+
+#include <glm/glm.hpp>
+#include <vector>
+
+#include "raster/camera.h"
+#include "trace/embree_scene.h"
+#include "trace/tessellate.h"
+#include "trace/tracer.h"
+
+namespace pem::runtime {
+
+// The triangles of one lens group as one world-space mesh (objects in group order).
+struct LensMesh {
+    std::vector<glm::vec3> positions;
+    std::vector<glm::vec3> normals;
+    std::vector<glm::uvec3> triangles;
+};
+LensMesh GroupMesh(const trace::Scene& scene, int group);
+
+struct LensPathsOptions {
+    trace::TessOptions tess;  // t = tess.maxEdgeSubpixels, in units of 1 / supersampling pixels
+    int supersampling = 1;
+    bool adaptive = true;  // false: the input mesh only (every front-facing vertex traced)
+    int threads = 1;
+};
+
+struct LensPaths {
+    trace::TessellationResult tess;
+    trace::RayCounts counts;
+    double traceSeconds = 0.0;  // vertex rays (both phases)
+    double tessSeconds = 0.0;   // tessellation bookkeeping without the vertex rays
+};
+
+LensPaths TraceLensPaths(const trace::Tracer& tracer, const trace::EmbreeScene& embree,
+                         const raster::Camera& camera, int group, const LensPathsOptions& options);
+
+}  // namespace pem::runtime

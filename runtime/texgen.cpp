@@ -1,0 +1,120 @@
+// SPDX-License-Identifier: MIT
+// texgen.cpp — exit rays, shell coordinates and layer passes (texgen.h).
+#include "runtime/texgen.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+
+#include "trace/fresnel.h"
+
+namespace pem::runtime {
+
+PassMesh MeshOf(const LensMesh& mesh) {
+    return {&mesh.positions, &mesh.normals, &mesh.triangles};
+}
+
+PassMesh MeshOf(const trace::TessellationResult& tess) {
+    return {&tess.positions, &tess.normals, &tess.triangles};
+}
+
+std::vector<ExitRay> TermExits(const std::vector<std::optional<trace::VertexPaths>>& paths,
+                               int term) {
+    std::vector<ExitRay> exits(paths.size());
+    for (size_t v = 0; v < paths.size(); ++v) {
+        if (!paths[v]) continue;
+        const trace::RayPath& p = term == 0 ? paths[v]->reflection : paths[v]->refraction;
+        if (!p.escaped) continue;
+        exits[v] = {p.exitOrigin, p.exitDir, glm::vec3(p.F * p.G), true};
+    }
+    return exits;
+}
+
+std::vector<ExitRay> ReflectionExits(const PassMesh& mesh, const glm::vec3& eye,
+                                     const glm::vec3& f0) {
+    std::vector<ExitRay> exits(mesh.positions->size());
+    for (size_t v = 0; v < exits.size(); ++v) {
+        const glm::vec3 p = (*mesh.positions)[v], n = (*mesh.normals)[v];
+        const glm::vec3 d = glm::normalize(p - eye);
+        const float cosTheta = -glm::dot(d, n);
+        if (!(cosTheta > 0.0f)) continue;  // back-facing vertex: no reflection
+        const glm::vec3 r = d + 2.0f * cosTheta * n;
+        glm::vec3 f;
+        for (int c = 0; c < 3; ++c)
+            f[c] = static_cast<float>(trace::FresnelSchlick(cosTheta, f0[c]));
+        exits[v] = {p, glm::normalize(r), f, true};
+    }
+    return exits;
+}
+
+std::vector<glm::vec3> ShellCoords(const std::vector<ExitRay>& exits, const trace::Shell& shell,
+                                   const glm::vec3& emOrigin) {
+    std::vector<glm::vec3> coords(exits.size());
+    const glm::dvec3 o(emOrigin);
+    for (size_t v = 0; v < exits.size(); ++v) {
+        const ExitRay& e = exits[v];
+        if (!e.valid) {
+            coords[v] = glm::vec3(0.0f, 0.0f, 1.0f);
+            continue;
+        }
+        const std::optional<trace::ShellHit> hit = trace::Intersect(shell, {e.origin, e.dir});
+        coords[v] = hit ? trace::LookupVector(hit->point - o) : e.dir;
+        if (!std::isfinite(coords[v].x) || !std::isfinite(coords[v].y) ||
+            !std::isfinite(coords[v].z) || coords[v] == glm::vec3(0.0f))
+            coords[v] = e.dir;
+    }
+    return coords;
+}
+
+std::vector<uint32_t> DrawOrder(const PassMesh& mesh, const raster::Camera& camera) {
+    const auto& pos = *mesh.positions;
+    const auto& nrm = *mesh.normals;
+    const auto& tris = *mesh.triangles;
+    std::vector<uint32_t> order;
+    std::vector<float> depth(tris.size(), 0.0f);
+    for (uint32_t i = 0; i < tris.size(); ++i) {
+        const glm::uvec3 t = tris[i];
+        bool front = false;
+        for (int k = 0; k < 3; ++k) front |= glm::dot(nrm[t[k]], camera.eye - pos[t[k]]) > 0.0f;
+        if (!front) continue;
+        const glm::vec3 c = (pos[t.x] + pos[t.y] + pos[t.z]) / 3.0f;
+        depth[i] = glm::length(c - camera.eye);
+        order.push_back(i);
+    }
+    std::stable_sort(order.begin(), order.end(),
+                     [&](uint32_t a, uint32_t b) { return depth[a] > depth[b]; });
+    return order;
+}
+
+glm::mat4 PassViewProjection(const PassMesh& mesh, const raster::Camera& camera) {
+    // Near/far: the mesh's distance range from the eye, widened; depth is clamped anyway.
+    float far = 1.0f;
+    for (const glm::vec3& p : *mesh.positions) far = std::max(far, glm::length(p - camera.eye));
+    return raster::ViewProjection(camera, 1e-3f * far, 4.0f * far);
+}
+
+raster::Pass LayerPass(const PassMesh& mesh, const std::vector<uint32_t>& order,
+                       const std::vector<glm::vec3>& coords, const std::vector<ExitRay>& exits,
+                       const glm::mat4& viewProjection, const PassOptions& options) {
+    raster::Pass pass;
+    pass.numUnits = 1;
+    pass.texture = {options.texture, options.texture};
+    pass.blend = options.blend;
+    const auto& pos = *mesh.positions;
+    pass.vertices.resize(pos.size());
+    for (size_t v = 0; v < pos.size(); ++v) {
+        raster::Vertex& out = pass.vertices[v];
+        out.pos = viewProjection * glm::vec4(pos[v], 1.0f);
+        out.coord[0] = coords[v];
+        out.color = options.modulate ? glm::vec4(exits[v].weight, 1.0f) : glm::vec4(1.0f);
+    }
+    pass.indices.reserve(order.size() * 3);
+    for (uint32_t i : order) {
+        const glm::uvec3 t = (*mesh.triangles)[i];
+        pass.indices.insert(pass.indices.end(), {t.x, t.y, t.z});
+    }
+    return pass;
+}
+
+}  // namespace pem::runtime

@@ -1,0 +1,76 @@
+// SPDX-License-Identifier: MIT
+// texgen.h — per-vertex texture coordinates and modulation for layered EMs, and the raster/
+// passes they make (PEM §4 and hybrid §5: "texgen").
+//
+//   std::vector<ExitRay> exits = TermExits(lp.tess.paths, /*term=*/0);          // hybrid mode
+//   std::vector<ExitRay> exits = ReflectionExits(mesh, camera.eye, f0);         // PEM mode
+//   std::vector<glm::vec3> coords = ShellCoords(exits, shell, emOrigin);
+//   raster::Pass pass = LayerPass(mesh, DrawOrder(mesh, camera), coords, exits, camera, opts);
+//
+// Exit rays: hybrid mode takes each vertex's greedy path of the term (its exit ray, weight F·G);
+// PEM mode reflects the eye ray off the vertex normal (weight: Schlick's F with the mirror's F0,
+// per vertex, interpolated by the rasterizer as the paper does). Texture coordinate of a layer:
+// the exit ray's hit on the layer's shell minus the EM origin (cube maps need no normalization);
+// a ray that misses the shell (it starts outside, running away) uses its direction (the layer
+// at infinity). Vertices without a path get weight 0.
+// Passes: clip-space positions from the camera's ViewProjection (near/far from the mesh depth
+// range, depth clamped); back-facing triangles (every vertex normal away from the eye) left out;
+// the rest drawn far to near (centroid distance, ties by index) since raster/ has no depth test.
+// Colour = (F·G, 1) when modulating, white otherwise; alpha stays the texture's coverage.
+// Not here: the vertex rays (lens_paths.h), compositing of layers and terms (renderer.h).
+#pragma once
+
+#include <glm/glm.hpp>
+#include <optional>
+#include <vector>
+
+#include "raster/camera.h"
+#include "raster/frame.h"
+#include "runtime/lens_paths.h"
+#include "trace/shell.h"
+
+namespace pem::runtime {
+
+struct ExitRay {
+    glm::vec3 origin{0.0f};
+    glm::vec3 dir{0.0f, 0.0f, 1.0f};  // unit
+    glm::vec3 weight{0.0f};           // F·G per channel
+    bool valid = false;               // false: no path (weight 0)
+};
+
+// The mesh a pass draws: positions, normals and triangles (a LensMesh or a tessellation).
+struct PassMesh {
+    const std::vector<glm::vec3>* positions = nullptr;
+    const std::vector<glm::vec3>* normals = nullptr;
+    const std::vector<glm::uvec3>* triangles = nullptr;
+};
+PassMesh MeshOf(const LensMesh& mesh);
+PassMesh MeshOf(const trace::TessellationResult& tess);
+
+// Step: exit rays.
+std::vector<ExitRay> TermExits(const std::vector<std::optional<trace::VertexPaths>>& paths,
+                               int term);
+std::vector<ExitRay> ReflectionExits(const PassMesh& mesh, const glm::vec3& eye,
+                                     const glm::vec3& f0);
+
+// Step: texture coordinates on a layer's shell.
+std::vector<glm::vec3> ShellCoords(const std::vector<ExitRay>& exits, const trace::Shell& shell,
+                                   const glm::vec3& emOrigin);
+
+// Step: the visible triangles, far to near.
+std::vector<uint32_t> DrawOrder(const PassMesh& mesh, const raster::Camera& camera);
+
+struct PassOptions {
+    int texture = 0;        // raster::Frame::textures index for unit 0
+    bool modulate = false;  // colour = (F·G, 1) instead of white
+    raster::BlendState blend = raster::BlendState::None();
+};
+
+// Clip-space transform shared by every pass of a frame: near/far around the mesh.
+glm::mat4 PassViewProjection(const PassMesh& mesh, const raster::Camera& camera);
+
+raster::Pass LayerPass(const PassMesh& mesh, const std::vector<uint32_t>& order,
+                       const std::vector<glm::vec3>& coords, const std::vector<ExitRay>& exits,
+                       const glm::mat4& viewProjection, const PassOptions& options);
+
+}  // namespace pem::runtime
