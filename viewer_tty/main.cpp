@@ -16,6 +16,7 @@
 #include "raster/render.h"
 #include "viewer_tty/case_file.h"
 #include "viewer_tty/cmd_infer.h"
+#include "viewer_tty/cmd_render.h"
 #include "viewer_tty/cmd_stability.h"
 #include "viewer_tty/cmd_trace.h"
 #include "viewer_tty/input_error.h"
@@ -118,6 +119,7 @@ int main(int argc, char** argv) {
     AddRaster(app, rasterArgs);
     cli::AddTraceCommand(app);
     cli::AddInferCommand(app);
+    cli::AddRenderCommand(app);
     cli::AddStabilityCommand(app);
     try {
         app.parse(argc, argv);
@@ -131,6 +133,7 @@ int main(int argc, char** argv) {
         if (app.got_subcommand("raster")) return RunRaster(rasterArgs);
         if (app.got_subcommand("trace")) return cli::RunTraceCommand();
         if (app.got_subcommand("infer")) return cli::RunInferCommand();
+        if (app.got_subcommand("render")) return cli::RunRenderCommand();
         if (app.got_subcommand("stability")) return cli::RunStabilityCommand();
     } catch (const std::exception& e) {
         std::fprintf(stderr, "pemref: %s\n", e.what());

@@ -1,0 +1,401 @@
+// SPDX-License-Identifier: MIT
+// renderer.cpp — frames from inferred maps and the baselines (renderer.h).
+#include "runtime/renderer.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <map>
+
+#include "raster/render.h"
+#include "runtime/lens_paths.h"
+#include "runtime/texgen.h"
+#include "trace/embree_scene.h"
+#include "trace/parallel.h"
+#include "trace/render.h"
+#include "trace/scene.h"
+#include "trace/segment.h"
+#include "trace/trace_run.h"
+#include "viewer_tty/input_error.h"
+
+namespace pem::runtime {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double Since(Clock::time_point t0) {
+    return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+// GL face table inverted: the direction of face coordinates (s, t) in [0, 1].
+glm::vec3 FaceDirection(int face, float s, float t) {
+    const float sc = 2.0f * s - 1.0f, tc = 2.0f * t - 1.0f;
+    switch (face) {
+        case 0:
+            return {1.0f, -tc, -sc};
+        case 1:
+            return {-1.0f, -tc, sc};
+        case 2:
+            return {sc, 1.0f, tc};
+        case 3:
+            return {sc, -1.0f, -tc};
+        case 4:
+            return {sc, -tc, 1.0f};
+        default:
+            return {-sc, -tc, -1.0f};
+    }
+}
+
+raster::BlendState PremultipliedOver() {
+    raster::BlendState b;
+    b.enabled = true;
+    b.srcRgb = b.srcAlpha = raster::BlendFactor::One;
+    b.dstRgb = b.dstAlpha = raster::BlendFactor::OneMinusSrcAlpha;
+    return b;
+}
+
+// Adds weight · frame / 255 to acc (RGB per pixel).
+void Accumulate(const raster::Image8& img, double weight, std::vector<double>* acc) {
+    const size_t n = static_cast<size_t>(img.width) * static_cast<size_t>(img.height);
+    for (size_t p = 0; p < n; ++p)
+        for (size_t c = 0; c < 3; ++c) (*acc)[3 * p + c] += weight * img.rgba[4 * p + c] / 255.0;
+}
+
+}  // namespace
+
+const char* ToString(Method m) {
+    switch (m) {
+        case Method::Hybrid:
+            return "hybrid";
+        case Method::Pem:
+            return "pem";
+        case Method::StaticEm:
+            return "static";
+        case Method::RayTraced:
+            return "traced";
+    }
+    return "?";
+}
+
+struct Renderer::Impl {
+    PemSet set;
+    trace::Scene scene;
+    std::unique_ptr<trace::EmbreeDevice> device;
+    std::unique_ptr<trace::EmbreeScene> embree;
+    std::unique_ptr<trace::Tracer> tracer;
+    std::map<int, raster::Texture> staticMaps;
+    glm::vec3 lensCentre{0.0f};
+    int threads = 1;
+
+    const raster::Texture& StaticMap(int group);
+    void DrawGroup(const raster::Camera& camera, const RenderSettings& s, int group,
+                   const std::vector<int>& samples, const std::vector<double>& weights,
+                   std::vector<double>* acc, FrameStats* stats);
+};
+
+Renderer::Renderer(PemSet set, int threads) : impl_(std::make_unique<Impl>()) {
+    impl_->set = std::move(set);
+    impl_->threads = threads;
+    impl_->scene = trace::LoadScene(impl_->set.scenePath);
+    if (!impl_->scene.camera) throw InputError(impl_->set.scenePath, "no camera node");
+    if (impl_->scene.lensGroups.size() != impl_->set.groups.size())
+        throw InputError(impl_->set.dir + "/manifest.json", "lens groups differ from the scene's");
+    impl_->device = std::make_unique<trace::EmbreeDevice>(trace::EmbreeOptions{threads, "auto"});
+    impl_->embree = std::make_unique<trace::EmbreeScene>(*impl_->device, impl_->scene);
+    impl_->tracer = std::make_unique<trace::Tracer>(impl_->scene, *impl_->embree);
+    impl_->lensCentre = trace::LensCentre(impl_->scene);
+}
+
+Renderer::~Renderer() = default;
+
+const PemSet& Renderer::pems() const {
+    return impl_->set;
+}
+const trace::Scene& Renderer::scene() const {
+    return impl_->scene;
+}
+const trace::Tracer& Renderer::tracer() const {
+    return *impl_->tracer;
+}
+
+raster::Camera Renderer::SampleCamera(int v) const {
+    raster::Camera c =
+        trace::CameraForSize(*impl_->scene.camera, impl_->set.width, impl_->set.height);
+    c.eye = impl_->set.views.at(static_cast<size_t>(v)).eye;
+    c.target = impl_->set.views.at(static_cast<size_t>(v)).target;
+    return c;
+}
+
+raster::Camera Renderer::Orbit(double azimuthDeg, double elevationDeg, double distanceScale) const {
+    raster::Camera c = SampleCamera(impl_->set.inferred.front());
+    const glm::dvec3 centre(impl_->lensCentre);
+    const glm::dvec3 d = glm::dvec3(c.eye) - centre;
+    const double dist = glm::length(d) * distanceScale;
+    const double az0 = std::atan2(d.x, d.z);
+    const double el0 = std::asin(std::clamp(d.y / glm::length(d), -1.0, 1.0));
+    const double az = az0 + glm::radians(azimuthDeg);
+    const double el = std::clamp(el0 + glm::radians(elevationDeg), -1.5, 1.5);
+    c.eye = glm::vec3(centre + dist * glm::dvec3(std::sin(az) * std::cos(el), std::sin(el),
+                                                 std::cos(az) * std::cos(el)));
+    c.target = glm::vec3(centre);
+    return c;
+}
+
+const raster::Texture& Renderer::Impl::StaticMap(int group) {
+    auto it = staticMaps.find(group);
+    if (it != staticMaps.end()) return it->second;
+    // One cube map from the EM origin, the group itself left out (rays continue through it).
+    const int n = std::min(set.res, 128);
+    const glm::vec3 origin = set.groups[static_cast<size_t>(group)].emOrigin;
+    std::vector<float> level0(static_cast<size_t>(6 * n * n) * 4, 0.0f);
+    trace::ParallelRows(6 * n, threads, [&](int row) {
+        const int f = row / n, j = row % n;
+        trace::RayCounts counts;
+        for (int i = 0; i < n; ++i) {
+            const glm::vec3 d = glm::normalize(
+                FaceDirection(f, (static_cast<float>(i) + 0.5f) / static_cast<float>(n),
+                              (static_cast<float>(j) + 0.5f) / static_cast<float>(n)));
+            const raster::Ray ray{origin, d};
+            const std::vector<trace::Hit> hits =
+                trace::EnvironmentHits(*tracer, ray, group, counts);
+            const trace::Hit hit = hits.empty() ? trace::Hit{} : hits.front();
+            const glm::vec3 l =
+                tracer->HitRadiance(ray, hit, tracer->options().fullTreeDepth, 1.0, counts);
+            float* p = &level0[((static_cast<size_t>(f) * n + j) * n + i) * 4];
+            p[0] = l.x, p[1] = l.y, p[2] = l.z, p[3] = 1.0f;
+        }
+    });
+    // Every MIP level by 2×2 means, then the 8-bit copy.
+    raster::Texture tex;
+    tex.kind = raster::TextureKind::Cube;
+    tex.width = tex.height = n;
+    std::vector<float> cur = level0;
+    for (int m = n; m >= 1; m /= 2) {
+        std::vector<uint8_t> bytes(cur.size());
+        for (size_t k = 0; k < cur.size(); ++k)
+            bytes[k] =
+                static_cast<uint8_t>(std::nearbyint(std::clamp(cur[k], 0.0f, 1.0f) * 255.0f));
+        tex.levels.push_back(std::move(bytes));
+        if (m == 1) break;
+        const int h = m / 2;
+        std::vector<float> next(static_cast<size_t>(6 * h * h) * 4, 0.0f);
+        for (int f = 0; f < 6; ++f)
+            for (int j = 0; j < h; ++j)
+                for (int i = 0; i < h; ++i)
+                    for (int c = 0; c < 4; ++c) {
+                        float s = 0.0f;
+                        for (int dj = 0; dj < 2; ++dj)
+                            for (int di = 0; di < 2; ++di)
+                                s += cur[((static_cast<size_t>(f) * m + 2 * j + dj) * m + 2 * i +
+                                          di) *
+                                             4 +
+                                         c];
+                        next[((static_cast<size_t>(f) * h + j) * h + i) * 4 + c] = 0.25f * s;
+                    }
+        cur.swap(next);
+    }
+    return staticMaps.emplace(group, std::move(tex)).first->second;
+}
+
+void Renderer::Impl::DrawGroup(const raster::Camera& camera, const RenderSettings& s, int group,
+                               const std::vector<int>& samples, const std::vector<double>& weights,
+                               std::vector<double>* acc, FrameStats* stats) {
+    const PemGroup& g = set.groups[static_cast<size_t>(group)];
+    const bool pemSplit = s.method == Method::Pem && g.pem;
+    // Step 1: vertex paths (hybrid: adaptive; PEM: the model's vertices).
+    LensPaths lp;
+    LensMesh base;
+    std::vector<ExitRay> termExits[2];
+    PassMesh mesh;
+    if (pemSplit) {
+        const auto t0 = Clock::now();
+        base = GroupMesh(scene, group);
+        mesh = MeshOf(base);
+        const trace::Material& mat = scene.materials[static_cast<size_t>(
+            scene
+                .objects[static_cast<size_t>(
+                    scene.lensGroups[static_cast<size_t>(group)].objects[0])]
+                .material)];
+        termExits[0] = ReflectionExits(mesh, camera.eye, mat.baseColor);
+        stats->texgenSeconds += Since(t0);
+        stats->trianglesIn += base.triangles.size();
+        stats->trianglesOut += base.triangles.size();
+    } else {
+        LensPathsOptions lo;
+        lo.tess.maxEdgeSubpixels = s.t;
+        lo.supersampling = set.spp;
+        lo.adaptive = s.method != Method::Pem;
+        lo.threads = s.threads;
+        lp = TraceLensPaths(*tracer, *embree, camera, group, lo);
+        stats->traceSeconds += lp.traceSeconds;
+        stats->tessSeconds += lp.tessSeconds;
+        stats->vertexRays += lp.counts.Total();
+        stats->trianglesIn += lp.tess.stats.trianglesIn;
+        stats->trianglesOut += lp.tess.triangles.size();
+        mesh = MeshOf(lp.tess);
+        const auto t0 = Clock::now();
+        for (int term = 0; term < (g.glass ? 2 : 1); ++term)
+            termExits[term] = TermExits(lp.tess.paths, term);
+        stats->texgenSeconds += Since(t0);
+    }
+    const auto t1 = Clock::now();
+    const std::vector<uint32_t> order = DrawOrder(mesh, camera);
+    const glm::mat4 vp = PassViewProjection(mesh, camera);
+    stats->texgenSeconds += Since(t1);
+
+    // Step 2: one frame per (sample, term): the layers outermost first, inner ones over them.
+    raster::RenderOptions ro;
+    ro.threads = s.threads;
+    auto drawFrame = [&](std::vector<const raster::Texture*> maps,
+                         const std::vector<std::vector<glm::vec3>>& coords,
+                         const std::vector<ExitRay>& exits, double weight) {
+        const auto tt = Clock::now();
+        raster::Frame frame;
+        frame.width = camera.width;
+        frame.height = camera.height;
+        frame.depthClamp = true;
+        for (size_t k = maps.size(); k-- > 0;) {
+            PassOptions po;
+            po.texture = static_cast<int>(frame.textures.size());
+            po.modulate = true;
+            po.blend = frame.passes.empty() ? raster::BlendState::None() : PremultipliedOver();
+            frame.textures.push_back(*maps[k]);
+            frame.passes.push_back(LayerPass(mesh, order, coords[k], exits, vp, po));
+        }
+        stats->texgenSeconds += Since(tt);
+        const auto tr = Clock::now();
+        const raster::RenderResult rr = raster::Render(raster::PreparedFrame(frame), ro);
+        Accumulate(rr.image8, weight, acc);
+        stats->rasterSeconds += Since(tr);
+    };
+    const int layers = static_cast<int>(g.layers.size());
+    const int firstLayer = s.layers == 1 ? layers - 1 : 0;
+    if (s.method == Method::StaticEm) {
+        const raster::Texture& map = StaticMap(group);
+        for (int term = 0; term < (g.glass ? 2 : 1); ++term) {
+            std::vector<glm::vec3> dirs(termExits[term].size());
+            for (size_t v = 0; v < dirs.size(); ++v) dirs[v] = termExits[term][v].dir;
+            drawFrame({&map}, {dirs}, termExits[term], 1.0);
+        }
+        return;
+    }
+    // Texture coordinates per term and layer (shared by the samples).
+    const auto tc = Clock::now();
+    std::vector<std::vector<glm::vec3>> coords[2];
+    for (int term = 0; term < (g.glass ? 2 : 1); ++term) {
+        if (pemSplit) {
+            coords[term] = {ShellCoords(termExits[term], g.localShell, g.emOrigin),
+                            ShellCoords(termExits[term], g.distantShell, g.emOrigin)};
+        } else {
+            for (int l = firstLayer; l < layers; ++l)
+                coords[term].push_back(
+                    ShellCoords(termExits[term], g.layers[static_cast<size_t>(l)], g.emOrigin));
+        }
+    }
+    stats->texgenSeconds += Since(tc);
+    for (size_t k = 0; k < samples.size(); ++k) {
+        for (int term = 0; term < (g.glass ? 2 : 1); ++term) {
+            std::vector<const raster::Texture*> maps;
+            if (pemSplit) {
+                maps = {set.Map(samples[k], group, "pem_local"),
+                        set.Map(samples[k], group, "pem_distant")};
+            } else {
+                for (int l = firstLayer; l < layers; ++l)
+                    maps.push_back(set.Map(
+                        samples[k], group,
+                        std::string(term == 0 ? "R" : "T") + "_layer_" + std::to_string(l)));
+            }
+            if (std::count(maps.begin(), maps.end(), nullptr) > 0)
+                throw InputError(set.dir, "missing maps for viewpoint sample " +
+                                              std::to_string(samples[k]) + ", group " +
+                                              std::to_string(group));
+            drawFrame(maps, coords[term], termExits[term], weights[k]);
+        }
+    }
+}
+
+RenderedFrame Renderer::Render(const raster::Camera& camera, const RenderSettings& s) {
+    Impl& m = *impl_;
+    const auto tStart = Clock::now();
+    RenderedFrame out;
+    const int w = camera.width, h = camera.height;
+    out.image = trace::FloatImage(w, h, 3);
+    out.lensMask.assign(static_cast<size_t>(w) * static_cast<size_t>(h), 0);
+    if (s.method == Method::RayTraced) {
+        const trace::FrameResult fr =
+            trace::RenderFrame(*m.tracer, camera, s.spp, trace::Model::FullTree, s.threads);
+        out.image = fr.image;
+        for (size_t p = 0; p < out.lensMask.size(); ++p)
+            out.lensMask[p] = fr.lensCoverage.data[p] > 0.0f ? 1 : 0;
+        out.stats.tracerRays = fr.counts.Total();
+        out.stats.totalSeconds = Since(tStart);
+        return out;
+    }
+    // Step 1: the rest of the frame, one camera ray per pixel; which group each pixel sees.
+    const auto tb = Clock::now();
+    std::vector<int> groupOf(out.lensMask.size(), -1);
+    std::vector<trace::RayCounts> rowCounts(static_cast<size_t>(h));
+    const raster::PixelRays rays(camera);
+    trace::ParallelRows(h, s.threads, [&](int y) {
+        std::vector<raster::Ray> rowRays(static_cast<size_t>(w));
+        std::vector<trace::Hit> hits(static_cast<size_t>(w));
+        for (int x = 0; x < w; ++x)
+            rowRays[static_cast<size_t>(x)] =
+                rays(static_cast<float>(x) + 0.5f, static_cast<float>(y) + 0.5f);
+        trace::RayCounts& counts = rowCounts[static_cast<size_t>(y)];
+        m.tracer->IntersectCamera(rowRays, hits, counts);
+        for (int x = 0; x < w; ++x) {
+            const size_t p =
+                static_cast<size_t>(y) * static_cast<size_t>(w) + static_cast<size_t>(x);
+            const trace::Hit& hit = hits[static_cast<size_t>(x)];
+            const int g = hit.valid ? m.tracer->GroupOf(hit.object) : -1;
+            if (g >= 0) {
+                groupOf[p] = g;
+                continue;
+            }
+            const glm::vec3 l =
+                m.tracer->HitRadiance(rowRays[static_cast<size_t>(x)], hit,
+                                      m.tracer->options().fullTreeDepth, 1.0, counts);
+            float* px = out.image.At(x, y);
+            px[0] = l.x, px[1] = l.y, px[2] = l.z;
+        }
+    });
+    for (const trace::RayCounts& c : rowCounts) out.stats.backgroundRays += c.Total();
+    out.stats.backgroundSeconds = Since(tb);
+
+    // Step 2: the two nearest viewpoint samples, weighted by the other's distance.
+    std::vector<std::pair<double, int>> byDistance;
+    for (int v : m.set.inferred)
+        byDistance.emplace_back(glm::length(glm::dvec3(camera.eye) -
+                                            glm::dvec3(m.set.views[static_cast<size_t>(v)].eye)),
+                                v);
+    std::sort(byDistance.begin(), byDistance.end());
+    std::vector<int> samples{byDistance[0].second};
+    std::vector<double> weights{1.0};
+    if (byDistance.size() > 1 && byDistance[0].first > 1e-9) {
+        const double d0 = byDistance[0].first, d1 = byDistance[1].first;
+        samples.push_back(byDistance[1].second);
+        weights = {d1 / (d0 + d1), d0 / (d0 + d1)};
+    }
+    out.stats.samples = samples;
+    out.stats.sampleWeights = weights;
+
+    // Step 3: each lens group seen, from its maps; other groups ray traced.
+    for (int g = 0; g < static_cast<int>(m.set.groups.size()); ++g) {
+        if (std::find(groupOf.begin(), groupOf.end(), g) == groupOf.end()) continue;
+        std::vector<double> acc(static_cast<size_t>(w) * static_cast<size_t>(h) * 3, 0.0);
+        m.DrawGroup(camera, s, g, samples, weights, &acc, &out.stats);
+        for (size_t p = 0; p < groupOf.size(); ++p) {
+            if (groupOf[p] != g) continue;
+            out.lensMask[p] = 1;
+            for (size_t c = 0; c < 3; ++c)
+                out.image.data[3 * p + c] = static_cast<float>(std::min(1.0, acc[3 * p + c]));
+        }
+    }
+    out.stats.lensSeconds = out.stats.traceSeconds + out.stats.tessSeconds +
+                            out.stats.texgenSeconds + out.stats.rasterSeconds;
+    out.stats.totalSeconds = Since(tStart);
+    return out;
+}
+
+}  // namespace pem::runtime

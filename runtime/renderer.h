@@ -1,0 +1,88 @@
+// SPDX-License-Identifier: MIT
+// renderer.h — frames at any viewpoint from the inferred maps, drawn by raster/'s llvmpipe
+// profile (PEM §5, hybrid §5), and the baselines they are compared with.
+//
+//   Renderer r(LoadPemSet("out/pem"), /*threads=*/2);
+//   RenderedFrame f = r.Render(r.Orbit(30, 20, 1), {Method::Hybrid});
+//
+// Methods (per lens group that has maps; other lens groups are ray traced with the full tree):
+//  - Hybrid: vertex greedy paths on the adaptively tessellated mesh (lens_paths.h, t subpixels
+//    of 1/spp pixel), per term one frame: the layers' passes outermost first (replace), inner
+//    ones with premultiplied *over*, colour F·G per vertex; the terms' frames added.
+//  - Pem: the same without adaptive tessellation (the model's own vertices); mirror-only groups
+//    use the PEM split: the eye ray reflected off each vertex normal, `pem_distant` then
+//    `pem_local` over it, times Schlick's F per vertex. `layers` = 1 keeps the outermost layer
+//    only (single-layer PEM).
+//  - StaticEm: one cube map per group traced from its EM origin (the group itself left out),
+//    looked up with the exit directions of the hybrid paths (a shell at infinity), F·G.
+//  - RayTraced: trace/render.h's reference (full tree) at spp × spp.
+// The two viewpoint samples nearest to the eye are blended by distance (w_i ∝ the other's
+// distance). The rest of the frame: one camera ray per pixel, shaded by the ray tracer (diffuse
+// direct light with shadows, environment); pixels whose camera ray first hits a group with maps
+// take that group's raster result. Timings per stage as the hybrid paper's table.
+// Not here: files and the command line (viewer_tty/cmd_render.cpp), the viewer loop.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "raster/camera.h"
+#include "runtime/pem_set.h"
+#include "trace/image.h"
+#include "trace/tracer.h"
+
+namespace pem::runtime {
+
+enum class Method { Hybrid, Pem, StaticEm, RayTraced };
+const char* ToString(Method m);
+
+struct RenderSettings {
+    Method method = Method::Hybrid;
+    double t = 5.0;  // hybrid tessellation threshold (subpixels)
+    int spp = 3;     // RayTraced: spp × spp samples per pixel
+    int layers = 0;  // 0: all layers; 1: the outermost only
+    int threads = 1;
+};
+
+struct FrameStats {
+    uint64_t vertexRays = 0, backgroundRays = 0, tracerRays = 0;
+    size_t trianglesIn = 0, trianglesOut = 0;
+    double traceSeconds = 0.0, tessSeconds = 0.0, texgenSeconds = 0.0, rasterSeconds = 0.0;
+    double backgroundSeconds = 0.0;
+    double lensSeconds = 0.0;   // trace + tess + texgen + raster (the lens objects' frame)
+    double totalSeconds = 0.0;  // the whole frame
+    std::vector<int> samples;   // blended viewpoint samples
+    std::vector<double> sampleWeights;
+};
+
+struct RenderedFrame {
+    trace::FloatImage image;        // RGB, linear (values from 8-bit maps are in [0, 1])
+    std::vector<uint8_t> lensMask;  // 1 where a group with maps is seen
+    FrameStats stats;
+};
+
+class Renderer {
+  public:
+    Renderer(PemSet set, int threads);
+    ~Renderer();
+    Renderer(const Renderer&) = delete;
+    Renderer& operator=(const Renderer&) = delete;
+
+    RenderedFrame Render(const raster::Camera& camera, const RenderSettings& settings);
+
+    const PemSet& pems() const;
+    const trace::Scene& scene() const;
+    const trace::Tracer& tracer() const;
+    // The camera of viewpoint sample v at the PEM size.
+    raster::Camera SampleCamera(int v) const;
+    // The first sample's camera orbited about the lens centre: azimuth and elevation (degrees)
+    // added to the sample's, distance scaled by `distanceScale`.
+    raster::Camera Orbit(double azimuthDeg, double elevationDeg, double distanceScale) const;
+
+  private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace pem::runtime

@@ -1,0 +1,19 @@
+// SPDX-License-Identifier: MIT
+// display.h — linear radiance → 8-bit sRGB pixels for PNG files and the terminal:
+// v × exposure, clamped to [0, 1], sRGB-encoded, rounded.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "raster/frame.h"
+
+namespace pem::cli {
+
+uint8_t ToDisplay(float v, float exposure);
+
+// `channels` floats per pixel (RGB first), rows top-down; alpha 255.
+raster::Image8 ToDisplayImage(const std::vector<float>& data, int width, int height, int channels,
+                              float exposure);
+
+}  // namespace pem::cli
