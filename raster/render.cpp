@@ -103,17 +103,26 @@ std::vector<float> ToFloat(const std::vector<uint8_t>& bytes, bool exact) {
 
 }  // namespace
 
-PreparedFrame::PreparedFrame(const Frame& frame) : frame_(&frame), indexer_(frame.textures) {
-    for (const Texture& t : frame.textures) {
-        PreparedTexture p;
-        p.source = &t;
-        p.lod = DerivePipeLodState(t.sampler, t.NumLevels());
-        for (const auto& level : t.levels) {
-            p.levelsF.push_back(ToFloat(level, false));
-            p.levelsExact.push_back(ToFloat(level, true));
-        }
-        textures_.push_back(std::move(p));
+std::shared_ptr<const PreparedTexture> PrepareTexture(const Texture& t) {
+    auto p = std::make_shared<PreparedTexture>();
+    p->source = &t;
+    p->lod = DerivePipeLodState(t.sampler, t.NumLevels());
+    for (const auto& level : t.levels) {
+        p->levelsF.push_back(ToFloat(level, false));
+        p->levelsExact.push_back(ToFloat(level, true));
     }
+    return p;
+}
+
+PreparedFrame::PreparedFrame(const Frame& frame) : frame_(&frame), indexer_(frame.textures) {
+    for (const Texture& t : frame.textures) textures_.push_back(PrepareTexture(t));
+}
+
+PreparedFrame::PreparedFrame(const Frame& frame,
+                             std::vector<std::shared_ptr<const PreparedTexture>> prepared)
+    : frame_(&frame), textures_(std::move(prepared)), indexer_(frame.textures) {
+    if (textures_.size() != frame.textures.size())
+        throw std::invalid_argument("PreparedFrame: one prepared texture per frame texture");
 }
 
 RenderResult Render(const PreparedFrame& prepared, const RenderOptions& options) {

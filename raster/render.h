@@ -17,6 +17,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "raster/frame.h"
@@ -44,16 +45,23 @@ struct PreparedTexture {
     std::vector<std::vector<float>> levelsExact;  // c / 255 in float (linear profile)
 };
 
+// One texture converted (the float copies are what PreparedFrame would make of it); `texture`
+// must outlive the result. Lets a caller drawing many frames with the same maps convert once.
+std::shared_ptr<const PreparedTexture> PrepareTexture(const Texture& texture);
+
 class PreparedFrame {
   public:
     explicit PreparedFrame(const Frame& frame);
+    // With textures prepared earlier: prepared[i] must be PrepareTexture of a texture equal to
+    // frame.textures[i] (the frame's own copies are used only for the texel numbering).
+    PreparedFrame(const Frame& frame, std::vector<std::shared_ptr<const PreparedTexture>> prepared);
     const Frame& frame() const { return *frame_; }
-    const PreparedTexture& texture(int i) const { return textures_[static_cast<size_t>(i)]; }
+    const PreparedTexture& texture(int i) const { return *textures_[static_cast<size_t>(i)]; }
     const TexelIndexer& indexer() const { return indexer_; }
 
   private:
     const Frame* frame_;
-    std::vector<PreparedTexture> textures_;
+    std::vector<std::shared_ptr<const PreparedTexture>> textures_;
     TexelIndexer indexer_;
 };
 

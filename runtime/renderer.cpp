@@ -84,6 +84,7 @@ struct Renderer::Impl {
     std::unique_ptr<trace::EmbreeScene> embree;
     std::unique_ptr<trace::Tracer> tracer;
     std::map<int, raster::Texture> staticMaps;
+    std::map<const raster::Texture*, std::shared_ptr<const raster::PreparedTexture>> prepared;
     glm::vec3 lensCentre{0.0f};
     int threads = 1;
 
@@ -251,6 +252,7 @@ void Renderer::Impl::DrawGroup(const raster::Camera& camera, const RenderSetting
                          const std::vector<ExitRay>& exits, double weight) {
         const auto tt = Clock::now();
         raster::Frame frame;
+        std::vector<std::shared_ptr<const raster::PreparedTexture>> ready;
         frame.width = camera.width;
         frame.height = camera.height;
         frame.depthClamp = true;
@@ -260,11 +262,16 @@ void Renderer::Impl::DrawGroup(const raster::Camera& camera, const RenderSetting
             po.modulate = true;
             po.blend = frame.passes.empty() ? raster::BlendState::None() : PremultipliedOver();
             frame.textures.push_back(*maps[k]);
+            auto it = prepared.find(maps[k]);
+            if (it == prepared.end())
+                it = prepared.emplace(maps[k], raster::PrepareTexture(*maps[k])).first;
+            ready.push_back(it->second);
             frame.passes.push_back(LayerPass(mesh, order, coords[k], exits, vp, po));
         }
         stats->texgenSeconds += Since(tt);
         const auto tr = Clock::now();
-        const raster::RenderResult rr = raster::Render(raster::PreparedFrame(frame), ro);
+        const raster::RenderResult rr =
+            raster::Render(raster::PreparedFrame(frame, std::move(ready)), ro);
         Accumulate(rr.image8, weight, acc);
         stats->rasterSeconds += Since(tr);
     };

@@ -2,8 +2,10 @@
 // cmd_render.cpp — argument parsing, output and statistics for `pemref render`.
 #include "viewer_tty/cmd_render.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <nlohmann/json.hpp>
+#include <vector>
 
 #include "trace/render.h"
 #include "viewer_tty/cmd_infer.h"
@@ -19,7 +21,7 @@ using nlohmann::json;
 struct RenderArgs {
     std::string pemDir, view = "sample:0", size, out, method = "hybrid", stats;
     double t = 5.0;
-    int spp = 3, layers = 0, threads = 1;
+    int spp = 3, layers = 0, threads = 1, repeat = 0;
     float exposure = 1.0f;
     bool quiet = false;
 };
@@ -84,6 +86,8 @@ void AddRenderCommand(CLI::App& app) {
     sub->add_option("--threads", a.threads, "worker threads")->check(CLI::Range(1, 256));
     sub->add_option("--stats", a.stats, "per-frame statistics (JSON)");
     sub->add_option("--exposure", a.exposure, "PNG exposure")->check(CLI::Range(0.0, 1e6));
+    sub->add_option("--repeat", a.repeat, "render N more times and report the median times")
+        ->check(CLI::Range(0, 1000));
     sub->add_flag("--quiet", a.quiet, "no summary line");
 }
 
@@ -106,7 +110,24 @@ int RunRenderCommand() {
     s.spp = a.spp;
     s.layers = a.layers;
     s.threads = a.threads;
-    const runtime::RenderedFrame f = renderer.Render(camera, s);
+    runtime::RenderedFrame f = renderer.Render(camera, s);
+    if (a.repeat > 0) {
+        // Warm frames (maps loaded and prepared): the median of each time.
+        std::vector<runtime::FrameStats> runs;
+        for (int r = 0; r < a.repeat; ++r) runs.push_back(renderer.Render(camera, s).stats);
+        auto median = [&](double runtime::FrameStats::*field) {
+            std::vector<double> v;
+            for (const runtime::FrameStats& st : runs) v.push_back(st.*field);
+            std::sort(v.begin(), v.end());
+            return v[v.size() / 2];
+        };
+        for (double runtime::FrameStats::*field :
+             {&runtime::FrameStats::traceSeconds, &runtime::FrameStats::tessSeconds,
+              &runtime::FrameStats::texgenSeconds, &runtime::FrameStats::rasterSeconds,
+              &runtime::FrameStats::backgroundSeconds, &runtime::FrameStats::lensSeconds,
+              &runtime::FrameStats::totalSeconds})
+            f.stats.*field = median(field);
+    }
     if (EndsWith(a.out, ".exr"))
         trace::WriteExr(a.out, f.image);
     else

@@ -19,6 +19,7 @@
 #include "viewer_tty/cmd_render.h"
 #include "viewer_tty/cmd_stability.h"
 #include "viewer_tty/cmd_trace.h"
+#include "viewer_tty/cmd_view.h"
 #include "viewer_tty/input_error.h"
 #include "viewer_tty/matrix_market.h"
 #include "viewer_tty/png_io.h"
@@ -120,6 +121,7 @@ int main(int argc, char** argv) {
     cli::AddTraceCommand(app);
     cli::AddInferCommand(app);
     cli::AddRenderCommand(app);
+    cli::AddViewCommand(app);
     cli::AddStabilityCommand(app);
     try {
         app.parse(argc, argv);
@@ -134,6 +136,7 @@ int main(int argc, char** argv) {
         if (app.got_subcommand("trace")) return cli::RunTraceCommand();
         if (app.got_subcommand("infer")) return cli::RunInferCommand();
         if (app.got_subcommand("render")) return cli::RunRenderCommand();
+        if (app.got_subcommand("view")) return cli::RunViewCommand();
         if (app.got_subcommand("stability")) return cli::RunStabilityCommand();
     } catch (const std::exception& e) {
         std::fprintf(stderr, "pemref: %s\n", e.what());
