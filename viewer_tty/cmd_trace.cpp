@@ -25,15 +25,8 @@ namespace {
 
 using nlohmann::json;
 
-struct TraceArgs {
-    std::string scene, views = "camera", size = "640x480", out, fresnel = "exact";
-    int spp = 3, threads = 1, layers = 2, depth = 6;
-    float exposure = 1.0f;
-    bool quiet = false, framesOnly = false;
-};
-
-TraceArgs& Args() {
-    static TraceArgs args;
+TraceJob& Args() {
+    static TraceJob args;
     return args;
 }
 
@@ -146,7 +139,7 @@ json GroupJson(const trace::Scene& scene, const trace::GroupReport& g) {
     return j;
 }
 
-json ReportJson(const trace::Scene& scene, const TraceArgs& a, const trace::TraceRunReport& r,
+json ReportJson(const trace::Scene& scene, const TraceJob& a, const trace::TraceRunReport& r,
                 const std::vector<raster::Camera>& views) {
     json jviews = json::array();
     for (size_t v = 0; v < r.views.size(); ++v) {
@@ -204,7 +197,7 @@ void WriteJson(const std::string& path, const json& j) {
 }  // namespace
 
 void AddTraceCommand(CLI::App& app) {
-    TraceArgs& a = Args();
+    TraceJob& a = Args();
     CLI::App* sub = app.add_subcommand("trace",
                                        "ray-trace a glTF scene: reference, segmented "
                                        "two-term images, layers (OpenEXR + PNG)");
@@ -225,7 +218,10 @@ void AddTraceCommand(CLI::App& app) {
 }
 
 int RunTraceCommand() {
-    const TraceArgs& a = Args();
+    return RunTraceJob(Args());
+}
+
+int RunTraceJob(const TraceJob& a) {
     const auto [w, h] = ParseSize(a.size);
     const trace::Scene scene = trace::LoadScene(a.scene);
     trace::TraceRunOptions o;

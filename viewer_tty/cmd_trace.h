@@ -12,8 +12,20 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <string>
 
 namespace pem::cli {
+
+// Everything `pemref trace` takes (its command-line options).
+struct TraceJob {
+    std::string scene, views = "camera", size = "640x480", out, fresnel = "exact";
+    int spp = 3, threads = 1, layers = 2, depth = 6;
+    float exposure = 1.0f;
+    bool quiet = false, framesOnly = false;
+};
+
+// Runs a trace job (also used by `pemref bake`); trace.json is written last.
+int RunTraceJob(const TraceJob& job);
 
 // Adds the `trace` subcommand (its arguments live in cmd_trace.cpp).
 void AddTraceCommand(CLI::App& app);

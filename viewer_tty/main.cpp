@@ -15,6 +15,7 @@
 
 #include "raster/render.h"
 #include "viewer_tty/case_file.h"
+#include "viewer_tty/cmd_bake.h"
 #include "viewer_tty/cmd_infer.h"
 #include "viewer_tty/cmd_render.h"
 #include "viewer_tty/cmd_stability.h"
@@ -122,6 +123,7 @@ int main(int argc, char** argv) {
     cli::AddInferCommand(app);
     cli::AddRenderCommand(app);
     cli::AddViewCommand(app);
+    cli::AddBakeCommand(app);
     cli::AddStabilityCommand(app);
     try {
         app.parse(argc, argv);
@@ -137,6 +139,7 @@ int main(int argc, char** argv) {
         if (app.got_subcommand("infer")) return cli::RunInferCommand();
         if (app.got_subcommand("render")) return cli::RunRenderCommand();
         if (app.got_subcommand("view")) return cli::RunViewCommand();
+        if (app.got_subcommand("bake")) return cli::RunBakeCommand();
         if (app.got_subcommand("stability")) return cli::RunStabilityCommand();
     } catch (const std::exception& e) {
         std::fprintf(stderr, "pemref: %s\n", e.what());
