@@ -18,6 +18,7 @@
 #include "viewer_tty/cmd_bake.h"
 #include "viewer_tty/cmd_infer.h"
 #include "viewer_tty/cmd_render.h"
+#include "viewer_tty/cmd_report.h"
 #include "viewer_tty/cmd_stability.h"
 #include "viewer_tty/cmd_trace.h"
 #include "viewer_tty/cmd_view.h"
@@ -124,6 +125,7 @@ int main(int argc, char** argv) {
     cli::AddRenderCommand(app);
     cli::AddViewCommand(app);
     cli::AddBakeCommand(app);
+    cli::AddReportCommand(app);
     cli::AddStabilityCommand(app);
     try {
         app.parse(argc, argv);
@@ -140,6 +142,7 @@ int main(int argc, char** argv) {
         if (app.got_subcommand("render")) return cli::RunRenderCommand();
         if (app.got_subcommand("view")) return cli::RunViewCommand();
         if (app.got_subcommand("bake")) return cli::RunBakeCommand();
+        if (app.got_subcommand("report")) return cli::RunReportCommand();
         if (app.got_subcommand("stability")) return cli::RunStabilityCommand();
     } catch (const std::exception& e) {
         std::fprintf(stderr, "pemref: %s\n", e.what());
