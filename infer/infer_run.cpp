@@ -177,6 +177,7 @@ MapReport SolveMap(const MapInput& in, const InferRunOptions& opt, const TraceMa
     ro.threads = opt.threads;
     const raster::RenderingMatrix a =
         raster::BuildRenderingMatrix(raster::PreparedFrame(frame), ro);
+    rep.matrixSeconds = Since(t0);
     // Step 2: the stacked system over the active texels.
     const Target target = MakeTarget(in, w, h, opt.hdr);
     const LinearSystem sys = BuildSystem(a, frame, 0, target, opt.weights, opt.system);
@@ -202,16 +203,20 @@ MapReport SolveMap(const MapInput& in, const InferRunOptions& opt, const TraceMa
         for (size_t r = 0; r < kx.size(); ++r) obj += (kx[r] - sys.h[r]) * (kx[r] - sys.h[r]);
         rep.objective = obj;
     }
+    const auto tFill = Clock::now();
     const Vector full = FillUnobserved(sys, res.x, &rep.filledTexels);
     const CubeMapF map = CubeMapFromSolution(full, sys.layout);
     rep.texelMin = rep.texelMax = full.empty() ? 0.0 : full[0];
     for (double v : full)
         rep.texelMin = std::min(rep.texelMin, v), rep.texelMax = std::max(rep.texelMax, v);
+    rep.fillSeconds = Since(tFill);
     // Step 4: rmse_8bit — the 8-bit copy through the llvmpipe profile, on the system's mask.
     auto rmse8 = [&](const CubeMapF& m) {
         raster::Frame f8 = frame;
         f8.textures[0] = ToTexture8(m, frame.textures[0].sampler);
-        const raster::RenderResult rr = raster::Render(raster::PreparedFrame(f8), {});
+        raster::RenderOptions fo;
+        fo.threads = opt.threads;
+        const raster::RenderResult rr = raster::Render(raster::PreparedFrame(f8), fo);
         double sum = 0.0;
         for (int64_t r : sys.imageRowOf) {
             const double d =
@@ -220,15 +225,18 @@ MapReport SolveMap(const MapInput& in, const InferRunOptions& opt, const TraceMa
         }
         return sys.imageWeightSum > 0.0 ? std::sqrt(sum / sys.imageWeightSum) : 0.0;
     };
+    const auto tRender = Clock::now();
     rep.rmse8 = rmse8(map);
+    rep.renderSeconds = Since(tRender);
     if (opt.direct && sys.Cols() <= opt.directMaxCols) {
         const SolveResult d = SolveDirect(sys, InitialGuess(sys), so.columnFloor);
         rep.directSeconds = d.seconds;
         rep.directRmse8 = rmse8(CubeMapFromSolution(FillUnobserved(sys, d.x), sys.layout));
     }
     // Step 5: files.
+    const auto tWrite = Clock::now();
     const std::string stem = dir + "/" + rep.name;
-    WriteCubeMapExr(map, stem + ".exr");
+    WriteCubeMapExr(map, stem + ".exr", opt.threads);
     WriteTexturePng(ToTexture8(map, frame.textures[0].sampler), stem + ".png");
     WriteLogCsv(res.log, stem + ".csv");
     if (!opt.exportDir.empty()) {
@@ -248,6 +256,7 @@ MapReport SolveMap(const MapInput& in, const InferRunOptions& opt, const TraceMa
                                              .dump(2)
                                       << "\n";
     }
+    rep.writeSeconds = Since(tWrite);
     return rep;
 }
 

@@ -85,6 +85,9 @@ struct MapReport {
     double rmse = 0.0, rmse8 = 0.0, objective = 0.0;
     double texelMin = 0.0, texelMax = 0.0;
     double directRmse8 = -1.0, directSeconds = 0.0;  // < 0: not run
+    // Where the time goes (seconds): raster's rendering matrix (part of buildSeconds), one
+    // forward render of the same pass (the rmse_8bit render), FillUnobserved and the files.
+    double matrixSeconds = 0.0, renderSeconds = 0.0, fillSeconds = 0.0, writeSeconds = 0.0;
 };
 
 struct SampleReport {

@@ -9,6 +9,7 @@
 #include <ImfHeader.h>
 #include <ImfIntAttribute.h>
 #include <ImfStandardAttributes.h>
+#include <ImfThreading.h>
 #include <ImfTiledInputFile.h>
 #include <ImfTiledOutputFile.h>
 
@@ -157,16 +158,18 @@ void CheckWritable(const CubeMapF& map) {
     }
 }
 
-void WriteExr(const CubeMapF& map, const std::string& path) {
+void WriteExr(const CubeMapF& map, const std::string& path, int threads) {
     // Header: N x 6N, float RGBA, cube envmap, tiled with every ROUND_DOWN MIP level.
     Imf::Header header(map.size, 6 * map.size);
     for (const char* name : kChannelNames) header.channels().insert(name, Imf::Channel(Imf::FLOAT));
     header.setTileDescription(
         Imf::TileDescription(kTileSize, kTileSize, Imf::MIPMAP_LEVELS, Imf::ROUND_DOWN));
     header.compression() = Imf::ZIP_COMPRESSION;
+    header.zipCompressionLevel() = 1;
     Imf::addEnvmap(header, Imf::ENVMAP_CUBE);
     header.insert(kLevelsAttribute, Imf::IntAttribute(map.NumLevels()));
-    Imf::TiledOutputFile out(path.c_str(), header);
+    if (threads > 1 && Imf::globalThreadCount() < threads) Imf::setGlobalThreadCount(threads);
+    Imf::TiledOutputFile out(path.c_str(), header, threads > 1 ? threads : 0);
     // Every level, the degenerate tail included.
     const std::array<float, kChannels> fill = CoarsestMean(map);
     for (int l = 0; l < out.numLevels(); ++l) {
@@ -191,11 +194,11 @@ ExrPixel ExrPixelOf(int face, int i, int j, int n) {
     return {p.x, face * n + p.y};
 }
 
-void WriteCubeMapExr(const CubeMapF& map, const std::string& path) {
+void WriteCubeMapExr(const CubeMapF& map, const std::string& path, int threads) {
     CheckWritable(map);
     const std::string tmp = path + ".tmp";
     try {
-        WriteExr(map, tmp);
+        WriteExr(map, tmp, threads);
         std::filesystem::rename(tmp, path);
     } catch (...) {
         std::error_code ignored;

@@ -25,7 +25,9 @@ namespace pem::infer {
 // floor(log2(6 n)) + 1: the levels of OpenEXR's ROUND_DOWN chain for an n x 6n image.
 int ExrLevelCount(int size);
 
-void WriteCubeMapExr(const CubeMapF& map, const std::string& path);
+// ZIP compression at zlib level 1 (fast; any OpenEXR reader reads it). `threads` > 1 lets
+// OpenEXR compress tiles in parallel (the file's bytes do not depend on it).
+void WriteCubeMapExr(const CubeMapF& map, const std::string& path, int threads = 1);
 CubeMapF ReadCubeMapExr(const std::string& path);
 
 // One level of the file as stored (RGBA floats, rows top-down), for checks and tools.

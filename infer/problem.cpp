@@ -191,20 +191,21 @@ LinearSystem BuildSystem(const raster::RenderingMatrix& a, const raster::Frame& 
     sys.imageWeightSum = img.weightSum;
     sys.priorValue = weights.priorValue ? *weights.priorValue : TargetMean(img);
 
-    // Regularizer blocks (omitted when their weight is 0), restricted to the active texels.
-    const int64_t fullCols = img.a.cols;
-    CsrMatrix smooth = weights.smooth > 0 ? SmoothnessRows(sys.layout, fullCols) : CsrMatrix{};
-    CsrMatrix pyramid = weights.pyramid > 0 ? PyramidRows(sys.layout, fullCols) : CsrMatrix{};
-    CsrMatrix prior = weights.prior > 0 ? PriorRows(sys.layout, fullCols) : CsrMatrix{};
-    int64_t cols = fullCols;
+    // Regularizer blocks (omitted when their weight is 0), built over the active texels only.
+    int64_t cols = img.a.cols;
+    CsrMatrix smooth, pyramid, prior;
     if (options.activeRings >= 0) {
         const std::vector<int32_t> index =
             ActiveTexels(img.a, sys.layout, options.activeRings, &sys.active);
         cols = static_cast<int64_t>(sys.active.size()) * kChannels;
         img.a = RestrictColumns(img.a, index, cols);
-        if (weights.smooth > 0) smooth = RestrictColumns(smooth, index, cols);
-        if (weights.pyramid > 0) pyramid = RestrictColumns(pyramid, index, cols);
-        if (weights.prior > 0) prior = RestrictColumns(prior, index, cols);
+        if (weights.smooth > 0) smooth = SmoothnessRows(sys.layout, sys.active, index);
+        if (weights.pyramid > 0) pyramid = PyramidRows(sys.layout, sys.active, index);
+        if (weights.prior > 0) prior = PriorRows(sys.layout, sys.active, index);
+    } else {
+        if (weights.smooth > 0) smooth = SmoothnessRows(sys.layout, cols);
+        if (weights.pyramid > 0) pyramid = PyramidRows(sys.layout, cols);
+        if (weights.prior > 0) prior = PriorRows(sys.layout, cols);
     }
     std::vector<RowBlock> blocks{{&img.a, 1.0, &img.sqrtWeight}};
     if (weights.smooth > 0) blocks.push_back({&smooth, std::sqrt(weights.smooth), nullptr});
@@ -301,37 +302,50 @@ Vector FillUnobserved(const LinearSystem& system, const Vector& x, int64_t* fill
         known[t] = 1;
     }
     int64_t fills = 0;
-    // Step 1: breadth-first within each level that has unknowns.
+    // Step 1: breadth-first within each level that has unknowns. A ring's values come only from
+    // texels filled before it, so the order within a ring does not matter.
     std::vector<uint8_t> levelDone(static_cast<size_t>(layout.levels), 0);
+    std::vector<uint8_t> queued(count, 0);
+    std::vector<uint32_t> frontier, ring;
+    std::vector<double> values;
     for (int l = 0; l < layout.levels; ++l) {
         const uint32_t b = layout.LevelBase(l), e = layout.LevelBase(l + 1);
         const int n = layout.LevelSize(l);
-        std::vector<uint32_t> frontier;
+        const auto nn = static_cast<uint32_t>(n) * static_cast<uint32_t>(n);
+        auto neighbours = [&](uint32_t t, uint32_t out[4]) {
+            const uint32_t r = t - b;
+            const FaceTexel ft{static_cast<int>(r / nn), static_cast<int>(r % nn) % n,
+                               static_cast<int>((r % nn) / static_cast<uint32_t>(n))};
+            int k = 0;
+            for (Edge ed : {Edge::Left, Edge::Right, Edge::Up, Edge::Down}) {
+                const FaceTexel nb = Neighbour(ft, ed, n);
+                out[k++] = layout.Texel(l, nb.face, nb.i, nb.j);
+            }
+        };
+        frontier.clear();
         for (uint32_t t = b; t < e; ++t)
             if (known[t]) frontier.push_back(t);
         if (frontier.empty()) continue;
         levelDone[static_cast<size_t>(l)] = 1;
         while (!frontier.empty()) {
-            // The next ring: unknown neighbours of the frontier, in texel order.
-            std::vector<uint32_t> ring;
+            // The next ring: unknown neighbours of the frontier.
+            ring.clear();
             for (uint32_t t : frontier) {
-                const TexelCoord tc = CoordOf(layout, t);
-                for (Edge ed : {Edge::Left, Edge::Right, Edge::Up, Edge::Down}) {
-                    const FaceTexel nb = Neighbour(tc.t, ed, n);
-                    const uint32_t u = layout.Texel(l, nb.face, nb.i, nb.j);
-                    if (!known[u]) ring.push_back(u);
-                }
+                uint32_t nb[4];
+                neighbours(t, nb);
+                for (uint32_t u : nb)
+                    if (!known[u] && !queued[u]) {
+                        queued[u] = 1;
+                        ring.push_back(u);
+                    }
             }
-            std::sort(ring.begin(), ring.end());
-            ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
             // Each the mean of its neighbours filled before this ring.
-            std::vector<double> values(ring.size() * kChannels, 0.0);
+            values.assign(ring.size() * kChannels, 0.0);
             for (size_t r = 0; r < ring.size(); ++r) {
-                const TexelCoord tc = CoordOf(layout, ring[r]);
+                uint32_t nb[4];
+                neighbours(ring[r], nb);
                 int m = 0;
-                for (Edge ed : {Edge::Left, Edge::Right, Edge::Up, Edge::Down}) {
-                    const FaceTexel nb = Neighbour(tc.t, ed, n);
-                    const uint32_t u = layout.Texel(l, nb.face, nb.i, nb.j);
+                for (uint32_t u : nb) {
                     if (!known[u]) continue;
                     ++m;
                     for (size_t c = 0; c < kChannels; ++c)

@@ -59,6 +59,25 @@ CsrMatrix EmptyRows(const CubeLayout& layout, int64_t cols) {
     return m;
 }
 
+// Active-set versions: one row per channel over compact columns, when every texel is active.
+bool AddActiveRows(const std::vector<uint32_t>& texels, const std::vector<double>& coef,
+                   const std::vector<int32_t>& index, CsrMatrix* m) {
+    std::vector<uint32_t> compact(texels.size());
+    for (size_t k = 0; k < texels.size(); ++k) {
+        const int32_t t = index[texels[k]];
+        if (t < 0) return false;
+        compact[k] = static_cast<uint32_t>(t);
+    }
+    AddChannelRows(compact, coef, m);
+    return true;
+}
+
+CsrMatrix ActiveEmpty(const std::vector<uint32_t>& active) {
+    CsrMatrix m;
+    m.cols = static_cast<int64_t>(active.size()) * kChannels;
+    return m;
+}
+
 }  // namespace
 
 uint32_t CubeLayout::LevelBase(int level) const {
@@ -127,6 +146,65 @@ CsrMatrix PriorRows(const CubeLayout& layout, int64_t cols) {
     CsrMatrix m = EmptyRows(layout, cols);
     const uint32_t end = layout.firstTexel + static_cast<uint32_t>(layout.TexelCount());
     for (uint32_t t = layout.firstTexel; t < end; ++t) AddChannelRows({t}, {1.0}, &m);
+    return m;
+}
+
+CsrMatrix SmoothnessRows(const CubeLayout& layout, const std::vector<uint32_t>& active,
+                         const std::vector<int32_t>& index) {
+    CsrMatrix m = ActiveEmpty(active);
+    auto on = [&](uint32_t t) { return index[t] >= 0; };
+    size_t k = 0;  // walks `active` level by level
+    std::vector<std::pair<uint32_t, uint32_t>> pairs;
+    for (int l = 0; l < layout.levels; ++l) {
+        // NeighbourPairs' rule from every active texel of the level; both ends must be active.
+        const uint32_t base = layout.LevelBase(l), end = layout.LevelBase(l + 1);
+        const int n = layout.LevelSize(l);
+        const CubeLayout local{0, layout.size, layout.levels};
+        pairs.clear();
+        for (; k < active.size() && active[k] < end; ++k) {
+            const uint32_t a = active[k], r = a - base;
+            const auto nn = static_cast<uint32_t>(n * n);
+            const int f = static_cast<int>(r / nn), i = static_cast<int>(r % nn) % n,
+                      j = static_cast<int>((r % nn) / static_cast<uint32_t>(n));
+            for (Edge e : {Edge::Right, Edge::Down, Edge::Left, Edge::Up}) {
+                if ((e == Edge::Left && i > 0) || (e == Edge::Up && j > 0)) continue;
+                const FaceTexel nb = Neighbour({f, i, j}, e, n);
+                const uint32_t b = local.Texel(l, nb.face, nb.i, nb.j);
+                if (a != b && on(b)) pairs.emplace_back(std::min(a, b), std::max(a, b));
+            }
+        }
+        std::sort(pairs.begin(), pairs.end());
+        pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+        for (const auto& [a, b] : pairs) AddActiveRows({a, b}, {1.0, -1.0}, index, &m);
+    }
+    return m;
+}
+
+CsrMatrix PyramidRows(const CubeLayout& layout, const std::vector<uint32_t>& active,
+                      const std::vector<int32_t>& index) {
+    CsrMatrix m = ActiveEmpty(active);
+    const CubeLayout local{0, layout.size, layout.levels};
+    for (int l = 1; l < layout.levels; ++l) {
+        const int n = layout.LevelSize(l);
+        if (layout.LevelSize(l - 1) != 2 * n) continue;
+        for (int f = 0; f < 6; ++f)
+            for (int j = 0; j < n; ++j)
+                for (int i = 0; i < n; ++i) {
+                    if (index[local.Texel(l, f, i, j)] < 0) continue;
+                    AddActiveRows({local.Texel(l, f, i, j), local.Texel(l - 1, f, 2 * i, 2 * j),
+                                   local.Texel(l - 1, f, 2 * i + 1, 2 * j),
+                                   local.Texel(l - 1, f, 2 * i, 2 * j + 1),
+                                   local.Texel(l - 1, f, 2 * i + 1, 2 * j + 1)},
+                                  {1.0, -0.25, -0.25, -0.25, -0.25}, index, &m);
+                }
+    }
+    return m;
+}
+
+CsrMatrix PriorRows(const CubeLayout& /*layout*/, const std::vector<uint32_t>& active,
+                    const std::vector<int32_t>& index) {
+    CsrMatrix m = ActiveEmpty(active);
+    for (uint32_t t : active) AddActiveRows({t}, {1.0}, index, &m);
     return m;
 }
 

@@ -65,4 +65,15 @@ CsrMatrix SmoothnessRows(const CubeLayout& layout, int64_t cols);
 CsrMatrix PyramidRows(const CubeLayout& layout, int64_t cols);
 CsrMatrix PriorRows(const CubeLayout& layout, int64_t cols);
 
+// The same rows restricted to active texels, built in time proportional to them: `active` lists
+// the active texels (relative to firstTexel, increasing) and index[t] is t's position in it (-1:
+// inactive). A row is kept when all its texels are active, with columns 4 index[t] + c; kept
+// rows stay in the order above (the rows of the full matrix whose columns are all active).
+CsrMatrix SmoothnessRows(const CubeLayout& layout, const std::vector<uint32_t>& active,
+                         const std::vector<int32_t>& index);
+CsrMatrix PyramidRows(const CubeLayout& layout, const std::vector<uint32_t>& active,
+                      const std::vector<int32_t>& index);
+CsrMatrix PriorRows(const CubeLayout& layout, const std::vector<uint32_t>& active,
+                    const std::vector<int32_t>& index);
+
 }  // namespace pem::infer

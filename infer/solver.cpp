@@ -229,6 +229,176 @@ CycleResult LsmrCycle(const ScaledOperator& op, const Vector& r0, int maxIts, do
     return res;
 }
 
+// LSMR on the quad form: the same recurrences with the vector work fused into three passes per
+// iteration (K product, K^T product, updates), each computing what the separate calls above
+// compute, in the same order, so the bytes are the same. u and v are kept unnormalized until
+// they are read (u = uRaw / beta per channel), which saves two passes over the row-sized u.
+constexpr int64_t kQuadsPerBlock = kReduceBlock / kChannels;
+
+Channels SumBlocks(const std::vector<Channels>& partial) {
+    Channels total{};
+    for (const Channels& s : partial)
+        for (size_t c = 0; c < kChannels; ++c) total[c] += s[c];
+    return total;
+}
+
+// uRaw <- mask (K vd - alpha (uRaw invBeta)); returns |uRaw|^2 per channel (blocked order).
+Channels FusedForward(const CsrMatrix& q, const Vector& vd, const Channels& invBeta,
+                      const Channels& alpha, const Channels& mask, Vector* uRaw,
+                      std::vector<Channels>* partial, int threads) {
+    const int64_t blocks = (q.rows + kQuadsPerBlock - 1) / kQuadsPerBlock;
+    partial->assign(static_cast<size_t>(blocks), Channels{});
+    const double* xp = vd.data();
+    double* up = uRaw->data();
+    ParallelRanges(blocks, threads, 2, [&](int64_t b0, int64_t b1) {
+        for (int64_t b = b0; b < b1; ++b) {
+            Channels acc{};
+            const int64_t end = std::min(q.rows, (b + 1) * kQuadsPerBlock);
+            for (int64_t r = b * kQuadsPerBlock; r < end; ++r) {
+                double s[kChannels] = {0.0, 0.0, 0.0, 0.0};
+                const int64_t e = q.rowPtr[static_cast<size_t>(r) + 1];
+                for (int64_t k = q.rowPtr[static_cast<size_t>(r)]; k < e; ++k) {
+                    const double v = q.val[static_cast<size_t>(k)];
+                    const double* xt = xp + size_t{kChannels} * q.col[static_cast<size_t>(k)];
+                    for (size_t c = 0; c < kChannels; ++c) s[c] += v * xt[c];
+                }
+                double* ur = up + kChannels * r;
+                for (size_t c = 0; c < kChannels; ++c) {
+                    const double prev = (ur[c] * invBeta[c]) * alpha[c];
+                    const double next = (s[c] - prev) * mask[c];
+                    ur[c] = next;
+                    acc[c] += next * next;
+                }
+            }
+            (*partial)[static_cast<size_t>(b)] = acc;
+        }
+    });
+    return SumBlocks(*partial);
+}
+
+// vRaw <- mask (dm .* (K^T (uRaw invBeta)) - beta v), in place over v; returns |vRaw|^2.
+Channels FusedTranspose(const CsrMatrix& qt, const Vector& uRaw, const Channels& invBeta,
+                        const Vector& dm, const Channels& beta, const Channels& mask, Vector* v,
+                        std::vector<Channels>* partial, int threads) {
+    const int64_t blocks = (qt.rows + kQuadsPerBlock - 1) / kQuadsPerBlock;
+    partial->assign(static_cast<size_t>(blocks), Channels{});
+    const double* up = uRaw.data();
+    double* vp = v->data();
+    ParallelRanges(blocks, threads, 2, [&](int64_t b0, int64_t b1) {
+        for (int64_t b = b0; b < b1; ++b) {
+            Channels acc{};
+            const int64_t end = std::min(qt.rows, (b + 1) * kQuadsPerBlock);
+            for (int64_t j = b * kQuadsPerBlock; j < end; ++j) {
+                double s[kChannels] = {0.0, 0.0, 0.0, 0.0};
+                const int64_t e = qt.rowPtr[static_cast<size_t>(j) + 1];
+                for (int64_t k = qt.rowPtr[static_cast<size_t>(j)]; k < e; ++k) {
+                    const double w = qt.val[static_cast<size_t>(k)];
+                    const double* ut = up + size_t{kChannels} * qt.col[static_cast<size_t>(k)];
+                    for (size_t c = 0; c < kChannels; ++c) s[c] += w * (ut[c] * invBeta[c]);
+                }
+                const size_t base = static_cast<size_t>(kChannels * j);
+                for (size_t c = 0; c < kChannels; ++c) {
+                    const double ktu = dm[base + c] * s[c];
+                    const double next = (ktu - vp[base + c] * beta[c]) * mask[c];
+                    vp[base + c] = next;
+                    acc[c] += next * next;
+                }
+            }
+            (*partial)[static_cast<size_t>(b)] = acc;
+        }
+    });
+    return SumBlocks(*partial);
+}
+
+// v = vRaw invAlpha, vd = dm .* v, hbar = h + cHbar hbar, y += cY hbar, h = v + cH h;
+// returns |y|^2.
+struct FusedVectors {
+    Vector v, vd, h, hbar, y;
+};
+Channels FusedUpdate(const Channels& invAlpha, const Vector& dm, const Channels& cHbar,
+                     const Channels& cY, const Channels& cH, FusedVectors* f,
+                     std::vector<Channels>* partial, int threads) {
+    const int64_t n = static_cast<int64_t>(f->v.size());
+    const int64_t blocks = (n + kReduceBlock - 1) / kReduceBlock;
+    partial->assign(static_cast<size_t>(blocks), Channels{});
+    ParallelRanges(blocks, threads, 4, [&](int64_t b0, int64_t b1) {
+        for (int64_t b = b0; b < b1; ++b) {
+            Channels acc{};
+            const size_t end = static_cast<size_t>(std::min(n, (b + 1) * kReduceBlock));
+            for (size_t k = static_cast<size_t>(b * kReduceBlock); k < end; k += kChannels)
+                for (size_t c = 0; c < kChannels; ++c) {
+                    const size_t e = k + c;
+                    const double v = f->v[e] * invAlpha[c];
+                    f->v[e] = v;
+                    f->vd[e] = dm[e] * v;
+                    f->hbar[e] = f->h[e] + cHbar[c] * f->hbar[e];
+                    f->y[e] += cY[c] * f->hbar[e];
+                    f->h[e] = v + cH[c] * f->h[e];
+                    acc[c] += f->y[e] * f->y[e];
+                }
+            (*partial)[static_cast<size_t>(b)] = acc;
+        }
+    });
+    return SumBlocks(*partial);
+}
+
+CycleResult LsmrCycleQuads(const SparseOperator& k, const Vector& dm, const Vector& r0, int maxIts,
+                           double atol, int threads, const Monitor& monitor) {
+    const size_t n = dm.size();
+    CycleResult res;
+    std::vector<Channels> partial;
+    const Channels none{}, all{1.0, 1.0, 1.0, 1.0};
+    // Golub-Kahan start: beta u = r0, alpha v = (KD)^T u.
+    Vector u = r0;
+    Channels beta = Norm(u, threads);
+    Channels invBeta = SafeInverse(beta);
+    FusedVectors f;
+    f.v.assign(n, 0.0);
+    Channels alpha =
+        Sqrt(FusedTranspose(k.QuadsT(), u, invBeta, dm, none, all, &f.v, &partial, threads));
+    f.vd.assign(n, 0.0);
+    f.h.assign(n, 0.0);
+    f.hbar.assign(n, 0.0);
+    f.y.assign(n, 0.0);
+    // v /= alpha, vd = dm v, h = v (h = v + 0 h, hbar and y stay 0).
+    FusedUpdate(SafeInverse(alpha), dm, none, none, none, &f, &partial, threads);
+    std::array<LsmrChannel, kChannels> ch;
+    std::array<bool, kChannels> active{};
+    for (size_t c = 0; c < kChannels; ++c) {
+        ch[c].Start(beta[c], alpha[c]);
+        active[c] = alpha[c] * beta[c] > 0.0;
+    }
+    while (res.iterations < maxIts && AnyActive(active)) {
+        // Bidiagonalization: beta u = (KD) v - alpha u, alpha v = (KD)^T u - beta v.
+        const Channels mask = Mask(active);
+        beta = Sqrt(FusedForward(k.Quads(), f.vd, invBeta, alpha, mask, &u, &partial, threads));
+        invBeta = SafeInverse(beta);
+        alpha =
+            Sqrt(FusedTranspose(k.QuadsT(), u, invBeta, dm, beta, mask, &f.v, &partial, threads));
+        // Scalar recurrences per channel, then the vector updates.
+        Channels cHbar{}, cY{}, cH{};
+        for (size_t c = 0; c < kChannels; ++c) {
+            LsmrChannel::Coeffs co;
+            if (active[c] && ch[c].Step(alpha[c], beta[c], &co)) {
+                cHbar[c] = co.hbar;
+                cY[c] = co.y;
+                cH[c] = co.h;
+            } else {
+                active[c] = false;
+            }
+        }
+        const Channels normy =
+            Sqrt(FusedUpdate(SafeInverse(alpha), dm, cHbar, cY, cH, &f, &partial, threads));
+        ++res.iterations;
+        // Per-channel tests; the monitor may stop the whole cycle.
+        for (size_t c = 0; c < kChannels; ++c)
+            if (active[c] && ch[c].Converged(normy[c], atol)) active[c] = false;
+        if (monitor && monitor(res.iterations, f.y)) break;
+    }
+    res.y = std::move(f.y);
+    return res;
+}
+
 // CGLS ----------------------------------------------------------------------------------------
 
 // Up to maxIts CGLS iterations on min |K diag(dm) y - r0| from y = 0.
@@ -431,10 +601,13 @@ SolveResult SolveIterative(const LinearSystem& sys, const Vector& x0, const Solv
             return floorReached;
         };
         const int budget = std::min(cycleLength, opt.maxIterations - res.iterations);
-        const CycleResult cyc = opt.method == Method::Lsmr
-                                    ? LsmrCycle(op, ev.r, budget, opt.atol, opt.threads, monitor)
-                                    : CglsCycle(op, ev.r, FrobeniusNorm(sc, dm), budget, opt.atol,
-                                                opt.threads, monitor);
+        const CycleResult cyc =
+            opt.method == Method::Lsmr
+                ? (sys.k.HasQuadForm()
+                       ? LsmrCycleQuads(sys.k, dm, ev.r, budget, opt.atol, opt.threads, monitor)
+                       : LsmrCycle(op, ev.r, budget, opt.atol, opt.threads, monitor))
+                : CglsCycle(op, ev.r, FrobeniusNorm(sc, dm), budget, opt.atol, opt.threads,
+                            monitor);
         for (size_t j = 0; j < res.x.size(); ++j) res.x[j] += dm[j] * cyc.y[j];
         Clamp(opt.bounds, &res.x);
         res.iterations += cyc.iterations;

@@ -128,6 +128,67 @@ bool IsChannelDiagonal(const CsrMatrix& a) {
     return true;
 }
 
-SparseOperator::SparseOperator(CsrMatrix a) : a_(std::move(a)), at_(Transpose(a_)) {}
+bool QuadForm(const CsrMatrix& a, CsrMatrix* quads) {
+    if (a.rows % kChannels != 0 || a.cols % kChannels != 0) return false;
+    CsrMatrix q;
+    q.rows = a.rows / kChannels;
+    q.cols = a.cols / kChannels;
+    q.rowPtr.reserve(static_cast<size_t>(q.rows) + 1);
+    q.col.reserve(a.col.size() / kChannels);
+    q.val.reserve(a.val.size() / kChannels);
+    for (int64_t p = 0; p < q.rows; ++p) {
+        const size_t r0 = static_cast<size_t>(kChannels * p);
+        const int64_t b0 = a.rowPtr[r0], len = a.rowPtr[r0 + 1] - b0;
+        for (size_t c = 1; c < kChannels; ++c) {
+            const int64_t bc = a.rowPtr[r0 + c];
+            if (a.rowPtr[r0 + c + 1] - bc != len) return false;
+            for (int64_t k = 0; k < len; ++k) {
+                const size_t e0 = static_cast<size_t>(b0 + k), ec = static_cast<size_t>(bc + k);
+                if (a.col[ec] != a.col[e0] + c || a.val[ec] != a.val[e0]) return false;
+            }
+        }
+        for (int64_t k = 0; k < len; ++k) {
+            const size_t e0 = static_cast<size_t>(b0 + k);
+            if (a.col[e0] % kChannels != 0) return false;
+            q.col.push_back(a.col[e0] / kChannels);
+            q.val.push_back(a.val[e0]);
+        }
+        q.rowPtr.push_back(static_cast<int64_t>(q.val.size()));
+    }
+    *quads = std::move(q);
+    return true;
+}
+
+void MultiplyQuads(const CsrMatrix& q, const Vector& x, Vector* y, int threads) {
+    if (static_cast<int64_t>(x.size()) != kChannels * q.cols)
+        throw std::invalid_argument("MultiplyQuads: size");
+    y->resize(static_cast<size_t>(kChannels * q.rows));
+    const double* xp = x.data();
+    double* yp = y->data();
+    ParallelRanges(q.rows, threads, 512, [&](int64_t r0, int64_t r1) {
+        for (int64_t r = r0; r < r1; ++r) {
+            double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0;
+            const int64_t end = q.rowPtr[static_cast<size_t>(r) + 1];
+            for (int64_t k = q.rowPtr[static_cast<size_t>(r)]; k < end; ++k) {
+                const double v = q.val[static_cast<size_t>(k)];
+                const double* xt = xp + size_t{kChannels} * q.col[static_cast<size_t>(k)];
+                s0 += v * xt[0];
+                s1 += v * xt[1];
+                s2 += v * xt[2];
+                s3 += v * xt[3];
+            }
+            double* yr = yp + kChannels * r;
+            yr[0] = s0;
+            yr[1] = s1;
+            yr[2] = s2;
+            yr[3] = s3;
+        }
+    });
+}
+
+SparseOperator::SparseOperator(CsrMatrix a) : a_(std::move(a)), at_(Transpose(a_)) {
+    quad_ = QuadForm(a_, &q_);
+    if (quad_) qt_ = Transpose(q_);
+}
 
 }  // namespace pem::infer

@@ -9,7 +9,8 @@
 //  - Reductions (Dot, SquaredNorm) sum fixed blocks of kReduceBlock entries sequentially, then
 //    the block partials in block order: the order never depends on the thread count.
 //  - ParallelRanges splits [0, n) into contiguous ranges, one per thread; bodies must write
-//    disjoint outputs (elementwise updates, rows of a sparse product).
+//    disjoint outputs (elementwise updates, rows of a sparse product). The threads come from one
+//    persistent pool (a solver makes thousands of these calls: no thread start-up per call).
 // Not here: sparse matrices (sparse.h), solvers (solver.h).
 #pragma once
 
@@ -17,7 +18,6 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
-#include <thread>
 #include <vector>
 
 namespace pem::infer {
@@ -27,8 +27,14 @@ constexpr int kChannels = 4;
 using Channels = std::array<double, kChannels>;
 constexpr int64_t kReduceBlock = 4096;  // a multiple of kChannels
 
+// Runs task(context, k) for k in [0, tasks) on the persistent worker pool (vector_ops.cpp):
+// the calling thread takes k = 0, pool threads the others; returns when all are done. Calls
+// made from inside a task, or while another thread uses the pool, run their tasks inline.
+void RunTasks(int tasks, void (*task)(const void* context, int k), const void* context);
+
 // Runs body(begin, end) over [0, n) split into at most `threads` contiguous ranges (each at
-// least minPerThread long); the calling thread takes the first range.
+// least minPerThread long); the calling thread takes the first range. The split depends only
+// on (n, threads, minPerThread), never on which thread runs a range.
 template <class Body>
 void ParallelRanges(int64_t n, int threads, int64_t minPerThread, const Body& body) {
     const int64_t maxUseful = std::max<int64_t>(1, n / std::max<int64_t>(1, minPerThread));
@@ -37,14 +43,17 @@ void ParallelRanges(int64_t n, int threads, int64_t minPerThread, const Body& bo
         body(int64_t{0}, n);
         return;
     }
-    const int64_t chunk = (n + t - 1) / t;
-    std::vector<std::thread> pool;
-    for (int k = 1; k < t; ++k) {
-        const int64_t b = std::min(n, chunk * k), e = std::min(n, chunk * (k + 1));
-        pool.emplace_back([&body, b, e] { body(b, e); });
-    }
-    body(int64_t{0}, std::min(n, chunk));
-    for (std::thread& th : pool) th.join();
+    struct Context {
+        const Body* body;
+        int64_t n, chunk;
+    } ctx{&body, n, (n + t - 1) / t};
+    RunTasks(
+        t,
+        [](const void* p, int k) {
+            const auto* c = static_cast<const Context*>(p);
+            (*c->body)(std::min(c->n, c->chunk * k), std::min(c->n, c->chunk * (k + 1)));
+        },
+        &ctx);
 }
 
 // Per-channel reductions (deterministic blocked order).
