@@ -12,7 +12,9 @@
 #include "infer/cube_map.h"
 #include "infer/pem_file.h"
 #include "raster/render.h"
+#include "runtime/convex_hull.h"
 #include "runtime/lens_paths.h"
+#include "runtime/pem_set.h"
 #include "runtime/texgen.h"
 #include "trace/embree_scene.h"
 #include "trace/image.h"
@@ -289,9 +291,16 @@ TraceManifest ReadTraceManifest(const std::string& traceDir) {
             tg.objects = g.at("objects").get<std::vector<std::string>>();
             tg.glass = g.at("glass").get<bool>();
             tg.emOrigin = glm::vec3(Vec3(g.at("em_origin")));
-            for (const json& l : g.at("layers"))
-                tg.layers.push_back(
-                    {ShellFrom(l.at("shell")), l.at("shell").at("type").get<std::string>()});
+            std::vector<double> radii;
+            std::vector<int64_t> records;
+            for (const json& l : g.at("layers")) {
+                tg.layers.push_back({ShellFrom(l.at("shell")),
+                                     l.at("shell").at("type").get<std::string>(),
+                                     l.at("radius").get<double>(), l.at("records").get<int64_t>()});
+                radii.push_back(tg.layers.back().radius);
+                records.push_back(tg.layers.back().records);
+            }
+            tg.singleShell = runtime::SingleLayerShell(glm::dvec3(tg.emOrigin), radii, records);
             if (g.contains("pem_local_distant")) {
                 tg.pem = true;
                 tg.localShell = ShellFrom(g.at("pem_local_distant").at("local"));
@@ -333,7 +342,9 @@ InferRunReport RunInfer(const InferRunOptions& opt) {
         for (int v = 0; v < static_cast<int>(tm.views.size()); ++v) views.push_back(v);
     int mapsTotal = 0;
     for (const TracedGroup& g : tm.groups)
-        mapsTotal += static_cast<int>(g.layers.size()) * (g.glass ? 2 : 1) + (g.pem ? 2 : 0);
+        mapsTotal +=
+            (static_cast<int>(g.layers.size()) + (opt.single ? 1 : 0)) * (g.glass ? 2 : 1) +
+            (g.pem ? 2 : 0);
     mapsTotal *= static_cast<int>(views.size());
     int mapsDone = 0;
 
@@ -373,6 +384,13 @@ InferRunReport RunInfer(const InferRunOptions& opt) {
                 const trace::FloatImage conf = trace::ReadExr(gdir + "/confidence_" + tn + ".exr");
                 const std::vector<runtime::ExitRay> exits = runtime::TermExits(lp.tess.paths, term);
                 for (size_t l = 0; l < g.layers.size(); ++l) {
+                    if (g.layers[l].records == 0) {  // an empty cluster: no hits to match
+                        if (term == 0)
+                            report.leftOut.push_back(
+                                {v, g.index, "layer " + std::to_string(l), "its cluster is empty"});
+                        ++mapsDone;
+                        continue;
+                    }
                     const trace::FloatImage layer =
                         trace::ReadExr(gdir + "/layer_" + std::to_string(l) + "_" + tn + ".exr");
                     MapInput in{&layer, &cov, &conf, {}};
@@ -389,7 +407,25 @@ InferRunReport RunInfer(const InferRunOptions& opt) {
                     ++mapsDone;
                 }
             }
-            // Step 4: mirror-only groups: the PEM paper's local/distant split.
+            // Step 4: the single-layer map per term: all the exit radiance on one sphere.
+            for (int term = 0; opt.single && term < (g.glass ? 2 : 1); ++term) {
+                const char* tn = term == 0 ? "R" : "T";
+                const trace::FloatImage b = trace::ReadExr(gdir + "/b_" + tn + ".exr");
+                const trace::FloatImage conf = trace::ReadExr(gdir + "/confidence_" + tn + ".exr");
+                const std::vector<runtime::ExitRay> exits = runtime::TermExits(lp.tess.paths, term);
+                MapInput in{&b, &b, &conf, {}};
+                in.pass = runtime::LayerPass(mesh, order,
+                                             runtime::ShellCoords(exits, g.singleShell, g.emOrigin),
+                                             exits, vp, {});
+                MapReport rep;
+                rep.view = v, rep.group = g.index, rep.layer = 0, rep.term = tn;
+                rep.name = std::string(tn) + "_single";
+                if (opt.progress) opt.progress(rep.name, static_cast<double>(mapsDone) / mapsTotal);
+                report.maps.push_back(SolveMap(in, opt, tm, odir, rep));
+                ++mapsDone;
+            }
+            // Step 5: mirror-only groups: the PEM paper's local/distant split; a reflector whose
+            // polygons all lie on its convex hull cannot see itself: no local layer.
             if (g.pem) {
                 const runtime::LensMesh base = runtime::GroupMesh(scene, g.index);
                 const runtime::PassMesh bm = runtime::MeshOf(base);
@@ -405,7 +441,11 @@ InferRunReport RunInfer(const InferRunOptions& opt) {
                 const trace::FloatImage distant = trace::ReadExr(gdir + "/distant.exr");
                 const trace::FloatImage local = trace::ReadExr(gdir + "/local.exr");
                 const trace::FloatImage conf = trace::ReadExr(gdir + "/confidence_R.exr");
-                for (int which = 0; which < 2; ++which) {
+                const bool convex = runtime::AllOnHull(runtime::HullTriangles(base));
+                if (convex)
+                    report.leftOut.push_back({v, g.index, "PEM local layer",
+                                              "every polygon lies on the reflector's convex hull"});
+                for (int which = convex ? 1 : 0; which < 2; ++which) {
                     MapInput in{which == 0 ? &local : &distant, &distant, &conf, {}};
                     in.pass = runtime::LayerPass(
                         bm, border,
@@ -420,6 +460,7 @@ InferRunReport RunInfer(const InferRunOptions& opt) {
                     report.maps.push_back(SolveMap(in, opt, tm, odir, rep));
                     ++mapsDone;
                 }
+                if (convex) ++mapsDone;
             }
         }
         sample.seconds = Since(tView);

@@ -40,6 +40,8 @@ namespace pem::infer {
 struct TracedLayer {
     trace::Shell shell;
     std::string kind;  // "sphere", "quad", ...
+    double radius = 0.0;
+    int64_t records = 0;
 };
 struct TracedGroup {
     int index = 0;
@@ -49,6 +51,7 @@ struct TracedGroup {
     std::vector<TracedLayer> layers;
     bool pem = false;  // mirror-only: local/distant shells below
     trace::Shell localShell, distantShell;
+    trace::Shell singleShell;  // runtime/pem_set.h SingleLayerShell
 };
 struct TraceManifest {
     std::string dir, scenePath;
@@ -65,6 +68,7 @@ struct InferRunOptions {
     bool hdr = false;                // float radiance, bounds [0, inf)
     double tessT = 5.0;              // tessellation t in subpixels (1 / spp pixels)
     std::vector<int> views;          // empty: all
+    bool single = true;              // also the single-layer map per term (`<τ>_single`)
     bool direct = false;             // also solve with the direct oracle (when it fits)
     int64_t directMaxCols = 400000;  // unknowns (4 per texel) the direct solver may take
     RegularizerWeights weights;
@@ -98,10 +102,17 @@ struct SampleReport {
     size_t triangles = 0;
 };
 
+// Work the job decided not to do (issue 6: "leave out what the scene does not need").
+struct LeftOut {
+    int view = 0, group = 0;
+    std::string what, why;
+};
+
 struct InferRunReport {
     TraceManifest trace;
     std::vector<MapReport> maps;
     std::vector<SampleReport> samples;
+    std::vector<LeftOut> leftOut;
     double seconds = 0.0;
 };
 

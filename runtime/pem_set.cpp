@@ -41,6 +41,17 @@ trace::Shell ShellFrom(const json& j) {
 
 }  // namespace
 
+trace::SphereShell SingleLayerShell(const glm::dvec3& emOrigin, const std::vector<double>& radii,
+                                    const std::vector<int64_t>& records) {
+    double sum = 0.0, weight = 0.0;
+    for (size_t l = 0; l < radii.size(); ++l) {
+        sum += static_cast<double>(records[l]) * radii[l];
+        weight += static_cast<double>(records[l]);
+    }
+    const double radius = weight > 0.0 ? sum / weight : (radii.empty() ? 1.0 : radii[0]);
+    return {emOrigin, radius};
+}
+
 trace::Shell ShellFromJson(const std::string& jsonText) {
     return ShellFrom(json::parse(jsonText));
 }
@@ -93,7 +104,15 @@ PemSet LoadPemSet(const std::string& dir) {
             pg.index = index++;
             pg.glass = g.at("glass").get<bool>();
             pg.emOrigin = glm::vec3(Vec3(g.at("em_origin")));
-            for (const json& l : g.at("layers")) pg.layers.push_back(ShellFrom(l.at("shell")));
+            std::vector<double> radii;
+            std::vector<int64_t> records;
+            for (const json& l : g.at("layers")) {
+                pg.layers.push_back(ShellFrom(l.at("shell")));
+                radii.push_back(l.at("radius").get<double>());
+                records.push_back(l.at("records").get<int64_t>());
+                pg.layerEmpty.push_back(records.back() == 0 ? 1 : 0);
+            }
+            pg.singleShell = SingleLayerShell(glm::dvec3(pg.emOrigin), radii, records);
             if (g.contains("pem_local_distant")) {
                 pg.pem = true;
                 pg.localShell = ShellFrom(g.at("pem_local_distant").at("local"));

@@ -24,11 +24,19 @@
 
 namespace pem::runtime {
 
+// The single-layer PEM's shell: a sphere at the EM origin whose radius is the layers' cluster
+// radii averaged with their record counts as weights (the one sphere that best stands for all
+// the hits; the first radius when no layer has records).
+trace::SphereShell SingleLayerShell(const glm::dvec3& emOrigin, const std::vector<double>& radii,
+                                    const std::vector<int64_t>& records);
+
 struct PemGroup {
     int index = 0;
     bool glass = false;
     glm::vec3 emOrigin{0.0f};
     std::vector<trace::Shell> layers;  // innermost first
+    std::vector<uint8_t> layerEmpty;   // 1: the layer's cluster has no records (no maps)
+    trace::Shell singleShell;          // SingleLayerShell of the layers
     bool pem = false;                  // mirror-only: local/distant shells
     trace::Shell localShell, distantShell;
 };

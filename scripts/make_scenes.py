@@ -910,12 +910,39 @@ def scene_pem(n):
     return g, extras
 
 
+def scene_sphere(n):
+    """A convex reflector: a mirror sphere on a checker floor in a small room (the case where
+    the PEM split needs no local layer and no refraction term)."""
+    g = GltfBuilder("mirror_sphere")
+    g.mesh_node("mirror_sphere", [(make_sphere(0.5, 48, 24), g.material("mirror_chrome", mirror((0.9, 0.9, 0.9))))],
+                translation=(0.0, 0.0, 0.0), extras={"pemref_role": "lens"})
+    x0, x1, z0, z1, h = -3.0, 3.0, -3.0, 3.0, 2.5
+    light, dark = checker_floor(x0, x1, z0, z1, 12, 12)
+    g.mesh_node("floor", [(light, g.material("floor_light", diffuse((0.8, 0.78, 0.72)))),
+                          (dark, g.material("floor_dark", diffuse((0.25, 0.2, 0.18))))])
+    palette = {"wall_north": ((0.75, 0.25, 0.2), (0.85, 0.8, 0.7)),
+               "wall_east": ((0.2, 0.5, 0.3), (0.8, 0.8, 0.7)),
+               "wall_south": ((0.2, 0.3, 0.7), (0.85, 0.8, 0.7)),
+               "wall_west": ((0.85, 0.65, 0.2), (0.8, 0.8, 0.7))}
+    room_walls(g, x0, x1, z0, z1, h, palette, 3, 2)
+    g.mesh_node("box_red", [(make_box(0.5, 0.5, 0.5), g.material("box_red", diffuse((0.8, 0.15, 0.1))))],
+                translation=(-1.2, 0.0, -0.8))
+    g.point_light_node("light_ceiling", (0.3, 2.2, 1.0), (1.0, 0.97, 0.92), 20.0)
+    center = (0.0, 0.5, 0.0)
+    radius, height = 2.2, 1.0
+    eye = circle_eye(center, radius, height, 0.0)
+    g.camera_node("camera", eye, center, 45.0, 4.0 / 3.0)
+    extras = {"pemref_environment": {"uri": "../env/sky.exr", "mapping": "latlong", "intensity": 1.0},
+              "pemref_viewpoints": viewpoint_circle(center, radius, height, -30.0, 10.0, 7)}
+    return g, extras
+
+
 # ----------------------------------------------------------------------------------------------------------
 
 
 def build_all():
     outputs = []
-    for fn, n in ((scene_hybrid, 16), (scene_pem, 25)):
+    for fn, n in ((scene_hybrid, 16), (scene_pem, 25), (scene_sphere, 0)):
         g, extras = fn(n)
         gltf, binary = g.finish(extras)
         outputs.append((g.name, gltf, binary, g.stats))

@@ -128,7 +128,9 @@ int RunBakeJob(const BakeJob& a) {
                 const infer::InferRunReport r = infer::RunInfer(o);
                 json maps = json::array();
                 for (const infer::MapReport& m : r.maps) maps.push_back(MapJson(m));
-                const json sample = {{"sample", SampleJson(r.samples.at(0))}, {"maps", maps}};
+                const json sample = {{"sample", SampleJson(r.samples.at(0))},
+                                     {"maps", maps},
+                                     {"left_out", LeftOutJson(r.leftOut)}};
                 WriteTextAtomic(SampleDir(pemDir, v) + "/sample.json", sample.dump(2) + "\n");
                 partial[static_cast<size_t>(job)] = 0.0;
                 ++done;
@@ -159,15 +161,17 @@ int RunBakeJob(const BakeJob& a) {
     if (failure) std::rethrow_exception(failure);
 
     // Step 3: infer.json and manifest.json over every sample.
-    json maps = json::array(), samples = json::array();
+    json maps = json::array(), samples = json::array(), leftOut = json::array();
     for (int v = 0; v < n; ++v) {
         std::ifstream f(SampleDir(pemDir, v) + "/sample.json");
         const json s = json::parse(f);
         samples.push_back(s.at("sample"));
         for (const json& m : s.at("maps")) maps.push_back(m);
+        for (const json& l : s.at("left_out")) leftOut.push_back(l);
     }
     const json inferJson = {{"trace_dir", traceDir}, {"res", a.res},       {"threads", a.threads},
-                            {"jobs", a.jobs},        {"samples", samples}, {"maps", maps}};
+                            {"jobs", a.jobs},        {"samples", samples}, {"maps", maps},
+                            {"left_out", leftOut}};
     WriteTextAtomic(pemDir + "/infer.json", inferJson.dump(2) + "\n");
     WriteTextAtomic(pemDir + "/manifest.json",
                     ManifestJson(trace, traceDir, a.res, false, {}).dump(2) + "\n");

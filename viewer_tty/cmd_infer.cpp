@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "infer/infer_run.h"
+#include "viewer_tty/infer_json.h"
 #include "viewer_tty/input_error.h"
 #include "viewer_tty/progress.h"
 
@@ -167,7 +168,8 @@ int RunInferCommand() {
         {"lambda", {{"smooth", a.smooth}, {"pyramid", a.pyramid}, {"prior", a.prior}}},
         {"seconds", r.seconds},
         {"samples", samples},
-        {"maps", maps}};
+        {"maps", maps},
+        {"left_out", LeftOutJson(r.leftOut)}};
     WriteTextAtomic(a.out + "/infer.json", inferJson.dump(2) + "\n");
 
     // manifest.json: what a renderer needs to use the maps.

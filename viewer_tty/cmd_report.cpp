@@ -197,6 +197,22 @@ int RunReportJob(const ReportJob& a) {
                 filled += m.at("filled_texels").get<int64_t>();
                 observed += m.at("observed_texels").get<int64_t>();
             }
+            // Decisions of the inference (empty clusters, convex reflectors), per sample.
+            for (const json& l : ij.value("left_out", json::array())) {
+                if (l.at("group").get<size_t>() != g) continue;
+                double sum = 0.0;
+                int count = 0;
+                for (const json& m : ij.at("maps"))
+                    if (m.at("group").get<size_t>() == g && m.at("view") == l.at("view")) {
+                        sum += m.at("build_seconds").get<double>() +
+                               m.at("solve_seconds").get<double>();
+                        ++count;
+                    }
+                data.leftOut.push_back({name,
+                                        l.at("what").get<std::string>() + " (sample " +
+                                            std::to_string(l.at("view").get<int>()) + ")",
+                                        l.at("why").get<std::string>(), count ? sum / count : 0.0});
+            }
             if (!grp.at("glass").get<bool>())
                 data.leftOut.push_back({name,
                                         "refraction (T) term: no trace images, no maps, no passes",

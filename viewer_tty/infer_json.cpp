@@ -48,6 +48,13 @@ json SampleJson(const infer::SampleReport& s) {
             {"triangles", s.triangles}};
 }
 
+json LeftOutJson(const std::vector<infer::LeftOut>& leftOut) {
+    json out = json::array();
+    for (const infer::LeftOut& l : leftOut)
+        out.push_back({{"view", l.view}, {"group", l.group}, {"what", l.what}, {"why", l.why}});
+    return out;
+}
+
 json ManifestJson(const infer::TraceManifest& trace, const std::string& traceDir, int res, bool hdr,
                   const std::vector<int>& inferredViews) {
     json views = json::array();

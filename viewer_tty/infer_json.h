@@ -13,6 +13,7 @@ namespace pem::cli {
 
 nlohmann::json MapJson(const infer::MapReport& m);
 nlohmann::json SampleJson(const infer::SampleReport& s);
+nlohmann::json LeftOutJson(const std::vector<infer::LeftOut>& leftOut);
 // manifest.json: format, scene, trace_dir, size, spp, res, profile, hdr, views, inferred_views,
 // lens_groups (copied from trace.json).
 nlohmann::json ManifestJson(const infer::TraceManifest& trace, const std::string& traceDir, int res,

@@ -16,6 +16,7 @@
 #include "raster/render.h"
 #include "viewer_tty/case_file.h"
 #include "viewer_tty/cmd_bake.h"
+#include "viewer_tty/cmd_demo.h"
 #include "viewer_tty/cmd_infer.h"
 #include "viewer_tty/cmd_render.h"
 #include "viewer_tty/cmd_report.h"
@@ -126,6 +127,7 @@ int main(int argc, char** argv) {
     cli::AddViewCommand(app);
     cli::AddBakeCommand(app);
     cli::AddReportCommand(app);
+    cli::AddDemoCommand(app);
     cli::AddStabilityCommand(app);
     try {
         app.parse(argc, argv);
@@ -143,6 +145,7 @@ int main(int argc, char** argv) {
         if (app.got_subcommand("view")) return cli::RunViewCommand();
         if (app.got_subcommand("bake")) return cli::RunBakeCommand();
         if (app.got_subcommand("report")) return cli::RunReportCommand();
+        if (app.got_subcommand("demo")) return cli::RunDemoCommand();
         if (app.got_subcommand("stability")) return cli::RunStabilityCommand();
     } catch (const std::exception& e) {
         std::fprintf(stderr, "pemref: %s\n", e.what());
