@@ -127,7 +127,20 @@ struct MapInput {
     const trace::FloatImage* coverage = nullptr;  // alpha = lens coverage
     const trace::FloatImage* confidence = nullptr;
     raster::Pass pass;
+    double weight = 1.0;               // multiplies the confidence
+    std::vector<MapInput> neighbours;  // the same map seen from nearby samples (hybrid §4.3)
 };
+
+// Rows of b appended to a (the same columns).
+void AppendRows(raster::RenderingMatrix* a, const raster::RenderingMatrix& b) {
+    const int64_t base = a->rowPtr.back();
+    for (size_t r = 1; r < b.rowPtr.size(); ++r) a->rowPtr.push_back(base + b.rowPtr[r]);
+    a->col.insert(a->col.end(), b.col.begin(), b.col.end());
+    a->val.insert(a->val.end(), b.val.begin(), b.val.end());
+    a->offset.insert(a->offset.end(), b.offset.begin(), b.offset.end());
+    a->rendered.insert(a->rendered.end(), b.rendered.begin(), b.rendered.end());
+    a->rows += b.rows;
+}
 
 raster::Frame UnknownFrame(int width, int height, int res) {
     raster::Frame frame;
@@ -161,7 +174,7 @@ Target MakeTarget(const MapInput& in, int width, int height, bool hdr) {
             for (size_t c = 0; c < 4; ++c) {
                 const double v = static_cast<double>(in.layer->At(x, y)[c]) / cov;
                 t.b[4 * p + c] = hdr ? v : std::clamp(v, 0.0, 1.0);
-                t.confidence[4 * p + c] = conf * cov;
+                t.confidence[4 * p + c] = in.weight * conf * cov;
             }
         }
     return t;
@@ -177,11 +190,20 @@ MapReport SolveMap(const MapInput& in, const InferRunOptions& opt, const TraceMa
     raster::RenderOptions ro;
     ro.profile = raster::Profile::Linear;
     ro.threads = opt.threads;
-    const raster::RenderingMatrix a =
-        raster::BuildRenderingMatrix(raster::PreparedFrame(frame), ro);
+    raster::RenderingMatrix a = raster::BuildRenderingMatrix(raster::PreparedFrame(frame), ro);
+    const int64_t sampleRows = a.rows;
+    Target target = MakeTarget(in, w, h, opt.hdr);
+    // The nearby samples' rows below the sample's own (the simultaneous solve).
+    for (const MapInput& nb : in.neighbours) {
+        raster::Frame nf = UnknownFrame(w, h, opt.res);
+        nf.passes.push_back(nb.pass);
+        AppendRows(&a, raster::BuildRenderingMatrix(raster::PreparedFrame(nf), ro));
+        const Target t = MakeTarget(nb, w, h, opt.hdr);
+        target.b.insert(target.b.end(), t.b.begin(), t.b.end());
+        target.confidence.insert(target.confidence.end(), t.confidence.begin(), t.confidence.end());
+    }
     rep.matrixSeconds = Since(t0);
     // Step 2: the stacked system over the active texels.
-    const Target target = MakeTarget(in, w, h, opt.hdr);
     const LinearSystem sys = BuildSystem(a, frame, 0, target, opt.weights, opt.system);
     rep.buildSeconds = Since(t0);
     rep.rows = sys.k.Rows();
@@ -219,13 +241,15 @@ MapReport SolveMap(const MapInput& in, const InferRunOptions& opt, const TraceMa
         raster::RenderOptions fo;
         fo.threads = opt.threads;
         const raster::RenderResult rr = raster::Render(raster::PreparedFrame(f8), fo);
-        double sum = 0.0;
+        double sum = 0.0, weight = 0.0;
         for (int64_t r : sys.imageRowOf) {
+            if (r >= sampleRows) break;  // the sample's own rows only
+            weight += target.confidence[static_cast<size_t>(r)];
             const double d =
                 rr.image8.rgba[static_cast<size_t>(r)] / 255.0 - target.b[static_cast<size_t>(r)];
             sum += target.confidence[static_cast<size_t>(r)] * d * d;
         }
-        return sys.imageWeightSum > 0.0 ? std::sqrt(sum / sys.imageWeightSum) : 0.0;
+        return weight > 0.0 ? std::sqrt(sum / weight) : 0.0;
     };
     const auto tRender = Clock::now();
     rep.rmse8 = rmse8(map);
@@ -363,26 +387,60 @@ InferRunReport RunInfer(const InferRunOptions& opt) {
             const std::string odir =
                 opt.outDir + "/" + ViewDir(v) + "/group_" + std::to_string(g.index);
             std::filesystem::create_directories(odir);
-            // Step 2: the vertex paths at this sample.
-            const auto tPaths = Clock::now();
-            runtime::LensPathsOptions lo;
-            lo.tess.maxEdgeSubpixels = opt.tessT;
-            lo.supersampling = tm.spp;
-            lo.threads = opt.threads;
-            const runtime::LensPaths lp =
-                runtime::TraceLensPaths(tracer, embree, camera, g.index, lo);
-            sample.pathSeconds += Since(tPaths);
-            sample.vertexRays += lp.counts.Total();
-            sample.triangles += lp.tess.triangles.size();
+            // Step 2: the vertex paths at this sample and at its neighbours in the solve.
+            struct ViewGeometry {
+                int view = 0;
+                raster::Camera camera;
+                runtime::LensPaths lp;
+                std::vector<uint32_t> order;
+                glm::mat4 vp{1.0f};
+                double weight = 1.0;
+            };
+            std::vector<ViewGeometry> geo;
+            for (int u = v - opt.neighbours; u <= v + opt.neighbours; ++u) {
+                if (u < 0 || u >= static_cast<int>(tm.views.size())) continue;
+                const auto tPaths = Clock::now();
+                ViewGeometry vg;
+                vg.view = u;
+                vg.camera = camera;
+                vg.camera.eye = tm.views[static_cast<size_t>(u)].eye;
+                vg.camera.target = tm.views[static_cast<size_t>(u)].target;
+                runtime::LensPathsOptions lo;
+                lo.tess.maxEdgeSubpixels = opt.tessT;
+                lo.supersampling = tm.spp;
+                lo.threads = opt.threads;
+                vg.lp = runtime::TraceLensPaths(tracer, embree, vg.camera, g.index, lo);
+                const runtime::PassMesh m = runtime::MeshOf(vg.lp.tess);
+                vg.order = runtime::DrawOrder(m, vg.camera);
+                vg.vp = runtime::PassViewProjection(m, vg.camera);
+                vg.weight = u == v ? 1.0 : opt.neighbourWeight;
+                sample.pathSeconds += Since(tPaths);
+                sample.vertexRays += vg.lp.counts.Total();
+                if (u == v) sample.triangles += vg.lp.tess.triangles.size();
+                geo.push_back(std::move(vg));
+            }
+            // The sample's own geometry first.
+            std::stable_partition(geo.begin(), geo.end(),
+                                  [v](const ViewGeometry& x) { return x.view == v; });
+            const runtime::LensPaths& lp = geo.front().lp;
             const runtime::PassMesh mesh = runtime::MeshOf(lp.tess);
-            const std::vector<uint32_t> order = runtime::DrawOrder(mesh, camera);
-            const glm::mat4 vp = runtime::PassViewProjection(mesh, camera);
-            // Step 3: one map per term and layer.
+            const std::vector<uint32_t>& order = geo.front().order;
+            const glm::mat4 vp = geo.front().vp;
+            // Step 3: one map per term and layer (the rows of every view in `geo`).
             for (int term = 0; term < (g.glass ? 2 : 1); ++term) {
                 const char* tn = term == 0 ? "R" : "T";
-                const trace::FloatImage cov = trace::ReadExr(gdir + "/b_" + tn + ".exr");
-                const trace::FloatImage conf = trace::ReadExr(gdir + "/confidence_" + tn + ".exr");
-                const std::vector<runtime::ExitRay> exits = runtime::TermExits(lp.tess.paths, term);
+                struct TermImages {
+                    trace::FloatImage cov, conf;
+                    std::vector<runtime::ExitRay> exits;
+                };
+                std::vector<TermImages> ti;
+                for (const ViewGeometry& vg : geo) {
+                    const std::string d =
+                        opt.traceDir + "/" + ViewDir(vg.view) + "/group_" + std::to_string(g.index);
+                    ti.push_back({trace::ReadExr(d + "/b_" + tn + ".exr"),
+                                  trace::ReadExr(d + "/confidence_" + tn + ".exr"),
+                                  runtime::TermExits(vg.lp.tess.paths, term)});
+                }
                 for (size_t l = 0; l < g.layers.size(); ++l) {
                     if (g.layers[l].records == 0) {  // an empty cluster: no hits to match
                         if (term == 0)
@@ -391,12 +449,22 @@ InferRunReport RunInfer(const InferRunOptions& opt) {
                         ++mapsDone;
                         continue;
                     }
-                    const trace::FloatImage layer =
-                        trace::ReadExr(gdir + "/layer_" + std::to_string(l) + "_" + tn + ".exr");
-                    MapInput in{&layer, &cov, &conf, {}};
-                    in.pass = runtime::LayerPass(
-                        mesh, order, runtime::ShellCoords(exits, g.layers[l].shell, g.emOrigin),
-                        exits, vp, {});
+                    std::vector<trace::FloatImage> layers;
+                    for (const ViewGeometry& vg : geo)
+                        layers.push_back(trace::ReadExr(opt.traceDir + "/" + ViewDir(vg.view) +
+                                                        "/group_" + std::to_string(g.index) +
+                                                        "/layer_" + std::to_string(l) + "_" + tn +
+                                                        ".exr"));
+                    auto input = [&](size_t k) {
+                        MapInput in{&layers[k], &ti[k].cov, &ti[k].conf, {}, geo[k].weight, {}};
+                        in.pass = runtime::LayerPass(
+                            runtime::MeshOf(geo[k].lp.tess), geo[k].order,
+                            runtime::ShellCoords(ti[k].exits, g.layers[l].shell, g.emOrigin),
+                            ti[k].exits, geo[k].vp, {});
+                        return in;
+                    };
+                    MapInput in = input(0);
+                    for (size_t k = 1; k < geo.size(); ++k) in.neighbours.push_back(input(k));
                     MapReport rep;
                     rep.view = v, rep.group = g.index, rep.layer = static_cast<int>(l),
                     rep.term = tn;
@@ -413,7 +481,7 @@ InferRunReport RunInfer(const InferRunOptions& opt) {
                 const trace::FloatImage b = trace::ReadExr(gdir + "/b_" + tn + ".exr");
                 const trace::FloatImage conf = trace::ReadExr(gdir + "/confidence_" + tn + ".exr");
                 const std::vector<runtime::ExitRay> exits = runtime::TermExits(lp.tess.paths, term);
-                MapInput in{&b, &b, &conf, {}};
+                MapInput in{&b, &b, &conf, {}, 1.0, {}};
                 in.pass = runtime::LayerPass(mesh, order,
                                              runtime::ShellCoords(exits, g.singleShell, g.emOrigin),
                                              exits, vp, {});
@@ -446,7 +514,7 @@ InferRunReport RunInfer(const InferRunOptions& opt) {
                     report.leftOut.push_back({v, g.index, "PEM local layer",
                                               "every polygon lies on the reflector's convex hull"});
                 for (int which = convex ? 1 : 0; which < 2; ++which) {
-                    MapInput in{which == 0 ? &local : &distant, &distant, &conf, {}};
+                    MapInput in{which == 0 ? &local : &distant, &distant, &conf, {}, 1.0, {}};
                     in.pass = runtime::LayerPass(
                         bm, border,
                         runtime::ShellCoords(exits, which == 0 ? g.localShell : g.distantShell,

@@ -12,6 +12,9 @@
 // selection and weights), the target = the traced layer image layer_l_τ un-premultiplied by the
 // lens coverage (b_τ's alpha), weighted by confidence_τ × coverage; BuildSystem with the active
 // texels (observed + rings), LSMR with bounds ([0, 1] or HDR), FillUnobserved, files.
+// With `neighbours` = k, the layer maps' systems also hold the rows of the k samples on each side
+// (their own vertex paths, texgen and traced layer images, confidence × neighbourWeight): the
+// simultaneous solve of hybrid §4.3, so a map also fits what is seen just off its sample.
 // Mirror-only groups also get the PEM paper's split (PEM mode texgen: the eye ray reflected off
 // each vertex normal): `local` on the ellipsoid shell and `distant` on the box.
 // Figures per map: rows, cols, nnz, seconds to build and solve, iterations, rmse (the linear
@@ -65,11 +68,13 @@ struct InferRunOptions {
     std::string traceDir, outDir, exportDir;
     int res = 256;
     int threads = 1;
-    bool hdr = false;                // float radiance, bounds [0, inf)
-    double tessT = 5.0;              // tessellation t in subpixels (1 / spp pixels)
-    std::vector<int> views;          // empty: all
-    bool single = true;              // also the single-layer map per term (`<τ>_single`)
-    bool direct = false;             // also solve with the direct oracle (when it fits)
+    bool hdr = false;              // float radiance, bounds [0, inf)
+    double tessT = 5.0;            // tessellation t in subpixels (1 / spp pixels)
+    std::vector<int> views;        // empty: all
+    bool single = true;            // also the single-layer map per term (`<τ>_single`)
+    int neighbours = 0;            // samples on each side in the simultaneous solve (hybrid §4.3)
+    double neighbourWeight = 0.5;  // their rows' confidence factor
+    bool direct = false;           // also solve with the direct oracle (when it fits)
     int64_t directMaxCols = 400000;  // unknowns (4 per texel) the direct solver may take
     RegularizerWeights weights;
     SystemOptions system{2};

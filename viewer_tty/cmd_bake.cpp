@@ -62,6 +62,9 @@ void AddBakeCommand(CLI::App& app) {
     sub->add_option("--size", a.size, "image size WxH");
     sub->add_option("--spp", a.spp, "K: K×K supersamples per pixel")->check(CLI::Range(1, 16));
     sub->add_option("--layers", a.layers, "EM layers (LBG)")->check(CLI::Range(1, 16));
+    sub->add_option("--neighbours", a.neighbours,
+                    "samples on each side in the simultaneous solve (hybrid §4.3)")
+        ->check(CLI::Range(0, 8));
     sub->add_option("--jobs", a.jobs, "viewpoint samples inferred at once")
         ->check(CLI::Range(1, 64));
     sub->add_option("--threads", a.threads, "threads per job")->check(CLI::Range(1, 256));
@@ -119,6 +122,7 @@ int RunBakeJob(const BakeJob& a) {
                 o.res = a.res;
                 o.threads = a.threads;
                 o.views = {v};
+                o.neighbours = a.neighbours;
                 o.solve.maxIterations = 150;
                 o.solve.logEvery = 25;
                 o.solve.atol = 1e-4;
@@ -169,8 +173,13 @@ int RunBakeJob(const BakeJob& a) {
         for (const json& m : s.at("maps")) maps.push_back(m);
         for (const json& l : s.at("left_out")) leftOut.push_back(l);
     }
-    const json inferJson = {{"trace_dir", traceDir}, {"res", a.res},       {"threads", a.threads},
-                            {"jobs", a.jobs},        {"samples", samples}, {"maps", maps},
+    const json inferJson = {{"trace_dir", traceDir},
+                            {"res", a.res},
+                            {"threads", a.threads},
+                            {"jobs", a.jobs},
+                            {"neighbours", a.neighbours},
+                            {"samples", samples},
+                            {"maps", maps},
                             {"left_out", leftOut}};
     WriteTextAtomic(pemDir + "/infer.json", inferJson.dump(2) + "\n");
     WriteTextAtomic(pemDir + "/manifest.json",

@@ -22,7 +22,7 @@ using nlohmann::json;
 
 struct InferArgs {
     std::string traceDir, out, views, exportDir;
-    int res = 256, threads = 1, maxIterations = 150;
+    int res = 256, threads = 1, neighbours = 0, maxIterations = 150;
     double t = 5.0, smooth = 1e-3, pyramid = 1e-3, prior = 1e-6;
     bool hdr = false, direct = false, quiet = false;
 };
@@ -74,6 +74,9 @@ void AddInferCommand(CLI::App& app) {
     sub->add_option("--res", a.res, "cube face size N (power of two)");
     sub->add_option("--threads", a.threads, "worker threads")->check(CLI::Range(1, 256));
     sub->add_option("--views", a.views, "viewpoint samples to infer, e.g. 0,2 (default: all)");
+    sub->add_option("--neighbours", a.neighbours,
+                    "samples on each side in the simultaneous solve (hybrid §4.3)")
+        ->check(CLI::Range(0, 8));
     sub->add_option("--t", a.t, "tessellation t (subpixels)")->check(CLI::Range(0.25, 1e4));
     sub->add_option("--max-iterations", a.maxIterations, "LSMR iterations per map")
         ->check(CLI::Range(1, 100000));
@@ -97,6 +100,7 @@ int RunInferCommand() {
     o.hdr = a.hdr;
     o.tessT = a.t;
     o.direct = a.direct;
+    o.neighbours = a.neighbours;
     o.views = a.views.empty() ? std::vector<int>{} : ParseViewList(a.views);
     o.weights.smooth = a.smooth;
     o.weights.pyramid = a.pyramid;
