@@ -162,4 +162,12 @@ void ClipTriangle(const ClipVertex& a, const ClipVertex& b, const ClipVertex& c,
     for (int i = 2; i < n; ++i) out->push_back({in[i - 1].win, in[i].win, in[0].win});
 }
 
+bool InsideViewVolume(const glm::vec4& pos, bool depthClamp) {
+    return ClipMask(pos, !depthClamp) == 0;
+}
+
+WindowVertex ToWindow(const ClipVertex& v, int numAttribs, int width, int height) {
+    return WindowFused(v, MakeViewport(width, height), numAttribs);
+}
+
 }  // namespace pem::raster

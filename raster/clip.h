@@ -25,4 +25,9 @@ using WindowTriangle = std::array<WindowVertex, 3>;
 void ClipTriangle(const ClipVertex& a, const ClipVertex& b, const ClipVertex& c, int numAttribs,
                   bool depthClamp, int width, int height, std::vector<WindowTriangle>* out);
 
+// ClipTriangle's fast path one vertex at a time: a triangle whose three vertices are inside the
+// view volume is passed on as (ToWindow(a), ToWindow(b), ToWindow(c)), bit for bit.
+bool InsideViewVolume(const glm::vec4& pos, bool depthClamp);
+WindowVertex ToWindow(const ClipVertex& v, int numAttribs, int width, int height);
+
 }  // namespace pem::raster

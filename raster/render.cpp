@@ -1,10 +1,13 @@
 // SPDX-License-Identifier: MIT
-// render.cpp — the frame loop: vertex processing, triangle setup, the quad loop over row bands
-// (one band set per thread), shading (texture units times colour), conversion and blending.
-// The same loop either writes pixels or collects the rows of the rendering matrix.
+// render.cpp — the frame loop: vertex processing (once per referenced vertex), triangle setup in
+// batches (contiguous chunks per thread), the quad loop over row bands (one band set per
+// thread), shading (texture units times colour), conversion and blending. Batches keep the setups
+// small; a pass shared by several frames (RenderFrames) is set up once per batch and drawn into
+// each. The same loop either writes pixels or collects the rows of the rendering matrix.
 #include "raster/render.h"
 
 #include <algorithm>
+#include <barrier>
 #include <cmath>
 #include <stdexcept>
 #include <thread>
@@ -23,35 +26,71 @@ int ColourOffset(const Pass& pass) {
     return 3 * pass.numUnits;
 }
 
-// Vertex fetch, clipping, viewport transform and triangle setup of one pass.
-std::vector<TriangleSetup> SetupPass(const Frame& frame, const Pass& pass, int first, int last) {
+ClipVertex Fetch(const Pass& pass, uint32_t index) {
+    const Vertex& v = pass.vertices[index];
+    ClipVertex cv{v.pos, {}};
+    for (int u = 0; u < pass.numUnits; ++u)
+        for (int k = 0; k < 3; ++k) cv.attr[static_cast<size_t>(3 * u + k)] = v.coord[u][k];
+    for (int k = 0; k < 4; ++k) cv.attr[static_cast<size_t>(ColourOffset(pass) + k)] = v.color[k];
+    return cv;
+}
+
+uint32_t Index(const Pass& pass, size_t i) {
+    return pass.indices.empty() ? static_cast<uint32_t>(i) : pass.indices[i];
+}
+
+// Per vertex of a pass: inside the view volume (then its window vertex is ready), outside, or
+// not referenced.
+enum class VertexState : uint8_t { Unused, Inside, Outside };
+
+struct PassVertices {
+    std::vector<VertexState> state;
+    std::vector<WindowVertex> window;
+};
+
+// The referenced vertices in [first, last): clip test and, inside, the viewport transform.
+void TransformVertices(const Frame& frame, const Pass& pass, size_t first, size_t last,
+                       PassVertices* pv) {
     const int numAttribs = ColourOffset(pass) + 4;
-    auto fetch = [&](uint32_t index) {
-        const Vertex& v = pass.vertices[index];
-        ClipVertex cv{v.pos, {}};
-        for (int u = 0; u < pass.numUnits; ++u)
-            for (int k = 0; k < 3; ++k) cv.attr[static_cast<size_t>(3 * u + k)] = v.coord[u][k];
-        for (int k = 0; k < 4; ++k)
-            cv.attr[static_cast<size_t>(ColourOffset(pass) + k)] = v.color[k];
-        return cv;
-    };
-    std::vector<TriangleSetup> setups;
+    for (size_t v = first; v < last; ++v) {
+        if (pv->state[v] == VertexState::Unused) continue;
+        const Vertex& vx = pass.vertices[v];
+        if (!InsideViewVolume(vx.pos, frame.depthClamp)) {
+            pv->state[v] = VertexState::Outside;
+            continue;
+        }
+        pv->window[v] =
+            ToWindow(Fetch(pass, static_cast<uint32_t>(v)), numAttribs, frame.width, frame.height);
+    }
+}
+
+// Clipping and triangle setup of triangles [first, last) of one pass, appended to `setups`;
+// triangles inside the view volume take the transformed vertices.
+void SetupTriangles(const Frame& frame, const Pass& pass, const PassVertices& pv, int first,
+                    int last, std::vector<TriangleSetup>* setups) {
+    const int numAttribs = ColourOffset(pass) + 4;
     std::vector<WindowTriangle> clipped;
+    TriangleSetup s;
     for (int t = first; t < last; ++t) {
         uint32_t idx[3];
-        for (int k = 0; k < 3; ++k)
-            idx[k] = pass.indices.empty() ? static_cast<uint32_t>(3 * t + k)
-                                          : pass.indices[static_cast<size_t>(3 * t + k)];
-        clipped.clear();
-        ClipTriangle(fetch(idx[0]), fetch(idx[1]), fetch(idx[2]), numAttribs, frame.depthClamp,
-                     frame.width, frame.height, &clipped);
-        for (const WindowTriangle& w : clipped) {
-            TriangleSetup s;
-            if (SetupTriangle(w[0], w[1], w[2], numAttribs, frame.width, frame.height, &s))
-                setups.push_back(s);
+        bool inside = true;
+        for (int k = 0; k < 3; ++k) {
+            idx[k] = Index(pass, static_cast<size_t>(3 * t + k));
+            inside = inside && pv.state[idx[k]] == VertexState::Inside;
         }
+        if (inside) {
+            if (SetupTriangle(pv.window[idx[0]], pv.window[idx[1]], pv.window[idx[2]], numAttribs,
+                              frame.width, frame.height, &s))
+                setups->push_back(s);
+            continue;
+        }
+        clipped.clear();
+        ClipTriangle(Fetch(pass, idx[0]), Fetch(pass, idx[1]), Fetch(pass, idx[2]), numAttribs,
+                     frame.depthClamp, frame.width, frame.height, &clipped);
+        for (const WindowTriangle& w : clipped)
+            if (SetupTriangle(w[0], w[1], w[2], numAttribs, frame.width, frame.height, &s))
+                setups->push_back(s);
     }
-    return setups;
 }
 
 // Runs fn(0) .. fn(workers - 1), each on its own thread (fn(0) on the caller's), with
@@ -72,26 +111,87 @@ void RunWorkers(int workers, bool ftz, const Fn& fn) {
     for (std::thread& th : pool) th.join();
 }
 
-void DrawFrame(const FragmentTarget& tg) {
-    const bool ftz = tg.options.profile == Profile::Llvmpipe;  // Linear: plain IEEE arithmetic
-    const Frame& frame = tg.frame->frame();
+// Triangles set up and drawn per batch, so the setups stay small and in cache.
+constexpr int kBatchTriangles = 8192;
+
+// One pass drawn into one or more targets: draws[0]'s pass is set up (clipping, setup) and its
+// triangles drawn with each draw's own pass state and textures; every draw's pass must have the
+// same geometry (SameGeometry) in frames of the same size.
+using PassDraw = std::pair<const FragmentTarget*, const Pass*>;
+
+void DrawPass(const std::vector<PassDraw>& draws, std::vector<std::vector<TriangleSetup>>* chunks,
+              PassVertices* pv) {
+    const FragmentTarget& tg0 = *draws[0].first;
+    const Pass& pass = *draws[0].second;
+    const bool ftz = tg0.options.profile == Profile::Llvmpipe;  // Linear: plain IEEE arithmetic
+    const Frame& frame = tg0.frame->frame();
     const DrawBandsFn drawBands = SelectDrawBands();
-    const int workers = std::max(1, tg.options.threads);
-    for (const Pass& pass : frame.passes) {
-        // Setup in contiguous chunks of triangles, joined in primitive order.
-        const int n = pass.NumTriangles();
-        std::vector<std::vector<TriangleSetup>> chunks(static_cast<size_t>(workers));
-        RunWorkers(workers, ftz, [&](int w) {
-            chunks[static_cast<size_t>(w)] =
-                SetupPass(frame, pass, static_cast<int>(int64_t{n} * w / workers),
-                          static_cast<int>(int64_t{n} * (w + 1) / workers));
-        });
-        std::vector<TriangleSetup> setups = std::move(chunks[0]);
-        for (size_t w = 1; w < chunks.size(); ++w)
-            setups.insert(setups.end(), chunks[w].begin(), chunks[w].end());
-        // Fragments by row bands.
-        RunWorkers(workers, ftz, [&](int w) { drawBands(tg, pass, setups, w, workers); });
+    const int workers = static_cast<int>(chunks->size());
+    // Step 1: mark the referenced vertices.
+    const size_t nv = pass.vertices.size();
+    const int n = pass.NumTriangles();
+    pv->state.assign(nv, pass.indices.empty() ? VertexState::Inside : VertexState::Unused);
+    for (uint32_t i : pass.indices) pv->state[i] = VertexState::Inside;
+    pv->window.resize(nv);
+    std::barrier sync(workers);
+    RunWorkers(workers, ftz, [&](int w) {
+        // Step 2: vertex processing in contiguous ranges.
+        TransformVertices(frame, pass, nv * static_cast<size_t>(w) / workers,
+                          nv * static_cast<size_t>(w + 1) / workers, pv);
+        sync.arrive_and_wait();
+        // Step 3: per batch, setup in contiguous chunks of triangles, then fragments by row bands
+        // over the chunks in primitive order.
+        std::vector<TriangleSetup>& mine = (*chunks)[static_cast<size_t>(w)];
+        for (int b0 = 0; b0 < n; b0 += kBatchTriangles) {
+            const int nb = std::min(kBatchTriangles, n - b0);
+            mine.clear();
+            SetupTriangles(frame, pass, *pv, b0 + nb * w / workers, b0 + nb * (w + 1) / workers,
+                           &mine);
+            sync.arrive_and_wait();
+            for (const PassDraw& d : draws)
+                for (const std::vector<TriangleSetup>& c : *chunks)
+                    drawBands(*d.first, *d.second, c, w, workers);
+            sync.arrive_and_wait();
+        }
+    });
+}
+
+// Whether two passes of equally sized frames give the same triangle setups.
+bool SameGeometry(const Frame& fa, const Pass& a, const Frame& fb, const Pass& b) {
+    return fa.width == fb.width && fa.height == fb.height && fa.depthClamp == fb.depthClamp &&
+           a.numUnits == b.numUnits && a.indices == b.indices && a.vertices == b.vertices;
+}
+
+// Draws every frame's passes, each framebuffer's in order; pass p of several frames with the
+// same geometry is set up once.
+void DrawFrames(const std::vector<FragmentTarget>& targets) {
+    const int workers = std::max(1, targets[0].options.threads);
+    PassVertices pv;
+    std::vector<std::vector<TriangleSetup>> chunks(static_cast<size_t>(workers));
+    size_t nPasses = 0;
+    for (const FragmentTarget& tg : targets)
+        nPasses = std::max(nPasses, tg.frame->frame().passes.size());
+    for (size_t p = 0; p < nPasses; ++p) {
+        std::vector<uint8_t> drawn(targets.size(), 0);
+        for (size_t f = 0; f < targets.size(); ++f) {
+            const Frame& frame = targets[f].frame->frame();
+            if (drawn[f] || p >= frame.passes.size()) continue;
+            std::vector<PassDraw> draws{{&targets[f], &frame.passes[p]}};
+            for (size_t g = f + 1; g < targets.size(); ++g) {
+                const Frame& other = targets[g].frame->frame();
+                if (drawn[g] || p >= other.passes.size() ||
+                    !SameGeometry(frame, frame.passes[p], other, other.passes[p]))
+                    continue;
+                draws.push_back({&targets[g], &other.passes[p]});
+                drawn[g] = 1;
+            }
+            DrawPass(draws, &chunks, &pv);
+        }
     }
+}
+
+void DrawFrame(const FragmentTarget& tg) {
+    DrawFrames({tg});
 }
 
 std::vector<float> ToFloat(const std::vector<uint8_t>& bytes, bool exact) {
@@ -126,23 +226,34 @@ PreparedFrame::PreparedFrame(const Frame& frame,
 }
 
 RenderResult Render(const PreparedFrame& prepared, const RenderOptions& options) {
-    const Frame& frame = prepared.frame();
-    const size_t n = static_cast<size_t>(frame.width) * frame.height;
-    RenderResult r;
-    r.image8 = {frame.width, frame.height, std::vector<uint8_t>(4 * n)};
-    for (size_t i = 0; i < n; ++i)
-        for (int c = 0; c < 4; ++c) r.image8.rgba[4 * i + c] = frame.clear[c];
-    if (options.profile == Profile::Linear) {
-        r.imageF = {frame.width, frame.height, std::vector<float>(4 * n)};
-        for (size_t i = 0; i < 4 * n; ++i)
-            r.imageF.rgba[i] = static_cast<float>(r.image8.rgba[i]) / 255.0f;
+    return std::move(RenderFrames({&prepared}, options)[0]);
+}
+
+std::vector<RenderResult> RenderFrames(const std::vector<const PreparedFrame*>& frames,
+                                       const RenderOptions& options) {
+    std::vector<RenderResult> results(frames.size());
+    std::vector<FragmentTarget> targets;
+    for (size_t f = 0; f < frames.size(); ++f) {
+        const Frame& frame = frames[f]->frame();
+        const size_t n = static_cast<size_t>(frame.width) * frame.height;
+        RenderResult& r = results[f];
+        r.image8 = {frame.width, frame.height, std::vector<uint8_t>(4 * n)};
+        for (size_t i = 0; i < n; ++i)
+            for (int c = 0; c < 4; ++c) r.image8.rgba[4 * i + c] = frame.clear[c];
+        if (options.profile == Profile::Linear) {
+            r.imageF = {frame.width, frame.height, std::vector<float>(4 * n)};
+            for (size_t i = 0; i < 4 * n; ++i)
+                r.imageF.rgba[i] = static_cast<float>(r.image8.rgba[i]) / 255.0f;
+        }
+        targets.push_back({frames[f], options, &r.image8, &r.imageF, nullptr, nullptr});
     }
-    DrawFrame({&prepared, options, &r.image8, &r.imageF, nullptr, nullptr});
+    if (!targets.empty()) DrawFrames(targets);
     if (options.profile == Profile::Linear)
-        for (size_t i = 0; i < 4 * n; ++i)
-            r.image8.rgba[i] =
-                UnormFromFloat(r.imageF.rgba[i], options.rounding == UnormRounding::HalfEven);
-    return r;
+        for (RenderResult& r : results)
+            for (size_t i = 0; i < r.imageF.rgba.size(); ++i)
+                r.image8.rgba[i] =
+                    UnormFromFloat(r.imageF.rgba[i], options.rounding == UnormRounding::HalfEven);
+    return results;
 }
 
 RenderingMatrix BuildRenderingMatrix(const PreparedFrame& prepared, const RenderOptions& options) {

@@ -72,6 +72,12 @@ struct RenderResult {
 
 RenderResult Render(const PreparedFrame& frame, const RenderOptions& options);
 
+// Several frames at once, each result equal to Render(*frames[i], options): pass p of frames
+// whose pass p has the same geometry (frame size and depth clamp, vertices, indices, units; the
+// textures and blending may differ) is clipped and set up once for all of them.
+std::vector<RenderResult> RenderFrames(const std::vector<const PreparedFrame*>& frames,
+                                       const RenderOptions& options);
+
 // The rendering matrix of a frame whose passes are linear in the texels (texel_index.h numbers
 // rows and columns): rendered = A * x + offset, x = texel bytes / 255 over all textures, rows per
 // (pixel, channel). A pass contributes the taps of its unit 0; unit 1 and the vertex colour are

@@ -11,9 +11,9 @@
 // its own surface; when that misses the group (a silhouette vertex grazed by float error), the
 // group's first hit along the ray is used (segment.h IncomingHit). From that hit the two greedy
 // paths (Tracer::GreedyPathsAt). A vertex with no group hit gets paths with F = 0.
-// Parallelism: the input vertices are traced first on `threads` threads (disjoint chunks), the
-// vertices the tessellation creates on the calling thread; the result is the same for any
-// thread count.
+// Parallelism: the tessellation runs on `threads` threads (trace/tessellate.h: the input vertices
+// in chunks, then runs of input triangles merged in index order); the result is the same for any
+// thread count (the ray counts may include a few midpoints traced by two runs).
 // Not here: texture coordinates and passes (texgen.h), the renderer (renderer.h).
 #pragma once
 
@@ -45,7 +45,7 @@ struct LensPathsOptions {
 struct LensPaths {
     trace::TessellationResult tess;
     trace::RayCounts counts;
-    double traceSeconds = 0.0;  // vertex rays (both phases)
+    double traceSeconds = 0.0;  // vertex rays (the tessellation's wall time × their time share)
     double tessSeconds = 0.0;   // tessellation bookkeeping without the vertex rays
 };
 

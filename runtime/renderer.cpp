@@ -240,39 +240,53 @@ void Renderer::Impl::DrawGroup(const raster::Camera& camera, const RenderSetting
         stats->texgenSeconds += Since(t0);
     }
     const auto t1 = Clock::now();
-    const std::vector<uint32_t> order = DrawOrder(mesh, camera);
-    const glm::mat4 vp = PassViewProjection(mesh, camera);
+    const PassGeometry geometry =
+        MakePassGeometry(mesh, DrawOrder(mesh, camera), PassViewProjection(mesh, camera));
     stats->texgenSeconds += Since(t1);
 
     // Step 2: one frame per (sample, term): the layers outermost first, inner ones over them.
+    // The frames are built first and rendered together (the samples' passes share their setup),
+    // then added in (sample, term) order.
     raster::RenderOptions ro;
     ro.threads = s.threads;
-    auto drawFrame = [&](std::vector<const raster::Texture*> maps,
-                         const std::vector<std::vector<glm::vec3>>& coords,
-                         const std::vector<ExitRay>& exits, double weight) {
+    std::vector<raster::Frame> frames;
+    std::vector<std::vector<std::shared_ptr<const raster::PreparedTexture>>> ready;
+    std::vector<double> frameWeights;
+    auto addFrame = [&](std::vector<const raster::Texture*> maps,
+                        const std::vector<std::vector<glm::vec3>>& coords,
+                        const std::vector<ExitRay>& exits, double weight) {
         const auto tt = Clock::now();
-        raster::Frame frame;
-        std::vector<std::shared_ptr<const raster::PreparedTexture>> ready;
+        raster::Frame& frame = frames.emplace_back();
+        auto& frameReady = ready.emplace_back();
+        frameWeights.push_back(weight);
         frame.width = camera.width;
         frame.height = camera.height;
         frame.depthClamp = true;
+        frame.passes.resize(maps.size());
         for (size_t k = maps.size(); k-- > 0;) {
+            const size_t slot = maps.size() - 1 - k;
             PassOptions po;
-            po.texture = static_cast<int>(frame.textures.size());
+            po.texture = static_cast<int>(slot);
             po.modulate = true;
-            po.blend = frame.passes.empty() ? raster::BlendState::None() : PremultipliedOver();
+            po.blend = slot == 0 ? raster::BlendState::None() : PremultipliedOver();
             frame.textures.push_back(*maps[k]);
             auto it = prepared.find(maps[k]);
             if (it == prepared.end())
                 it = prepared.emplace(maps[k], raster::PrepareTexture(*maps[k])).first;
-            ready.push_back(it->second);
-            frame.passes.push_back(LayerPass(mesh, order, coords[k], exits, vp, po));
+            frameReady.push_back(it->second);
+            FillLayerPass(geometry, coords[k], exits, po, &frame.passes[slot]);
         }
         stats->texgenSeconds += Since(tt);
+    };
+    auto drawFrames = [&]() {
         const auto tr = Clock::now();
-        const raster::RenderResult rr =
-            raster::Render(raster::PreparedFrame(frame, std::move(ready)), ro);
-        Accumulate(rr.image8, weight, acc);
+        std::vector<raster::PreparedFrame> pf;
+        pf.reserve(frames.size());
+        for (size_t f = 0; f < frames.size(); ++f) pf.emplace_back(frames[f], std::move(ready[f]));
+        std::vector<const raster::PreparedFrame*> ptrs;
+        for (const raster::PreparedFrame& p : pf) ptrs.push_back(&p);
+        const std::vector<raster::RenderResult> rr = raster::RenderFrames(ptrs, ro);
+        for (size_t f = 0; f < rr.size(); ++f) Accumulate(rr[f].image8, frameWeights[f], acc);
         stats->rasterSeconds += Since(tr);
     };
     const int layers = static_cast<int>(g.layers.size());
@@ -282,43 +296,51 @@ void Renderer::Impl::DrawGroup(const raster::Camera& camera, const RenderSetting
         for (int term = 0; term < (g.glass ? 2 : 1); ++term) {
             std::vector<glm::vec3> dirs(termExits[term].size());
             for (size_t v = 0; v < dirs.size(); ++v) dirs[v] = termExits[term][v].dir;
-            drawFrame({&map}, {dirs}, termExits[term], 1.0);
+            addFrame({&map}, {dirs}, termExits[term], 1.0);
         }
+        drawFrames();
         return;
+    }
+    // The layers drawn, innermost first: a shell and the map of each term. PEM split: local over
+    // distant (no local map: a convex reflector); single layer: the `<τ>_single` map on its
+    // sphere (older PEM directories without it: the outermost layer); layers of empty clusters
+    // have no maps.
+    struct LayerUse {
+        const trace::Shell* shell;
+        std::string name[2];
+    };
+    std::vector<LayerUse> uses;
+    const int s0 = samples.front();
+    if (pemSplit) {
+        if (set.Map(s0, group, "pem_local")) uses.push_back({&g.localShell, {"pem_local", ""}});
+        uses.push_back({&g.distantShell, {"pem_distant", ""}});
+    } else if (s.layers == 1 && set.Map(s0, group, "R_single")) {
+        uses.push_back({&g.singleShell, {"R_single", "T_single"}});
+    } else {
+        for (int l = firstLayer; l < layers; ++l)
+            if (!g.layerEmpty[static_cast<size_t>(l)])
+                uses.push_back({&g.layers[static_cast<size_t>(l)],
+                                {"R_layer_" + std::to_string(l), "T_layer_" + std::to_string(l)}});
     }
     // Texture coordinates per term and layer (shared by the samples).
     const auto tc = Clock::now();
     std::vector<std::vector<glm::vec3>> coords[2];
-    for (int term = 0; term < (g.glass ? 2 : 1); ++term) {
-        if (pemSplit) {
-            coords[term] = {ShellCoords(termExits[term], g.localShell, g.emOrigin),
-                            ShellCoords(termExits[term], g.distantShell, g.emOrigin)};
-        } else {
-            for (int l = firstLayer; l < layers; ++l)
-                coords[term].push_back(
-                    ShellCoords(termExits[term], g.layers[static_cast<size_t>(l)], g.emOrigin));
-        }
-    }
+    for (int term = 0; term < (g.glass ? 2 : 1); ++term)
+        for (const LayerUse& u : uses)
+            coords[term].push_back(ShellCoords(termExits[term], *u.shell, g.emOrigin, s.threads));
     stats->texgenSeconds += Since(tc);
     for (size_t k = 0; k < samples.size(); ++k) {
         for (int term = 0; term < (g.glass ? 2 : 1); ++term) {
             std::vector<const raster::Texture*> maps;
-            if (pemSplit) {
-                maps = {set.Map(samples[k], group, "pem_local"),
-                        set.Map(samples[k], group, "pem_distant")};
-            } else {
-                for (int l = firstLayer; l < layers; ++l)
-                    maps.push_back(set.Map(
-                        samples[k], group,
-                        std::string(term == 0 ? "R" : "T") + "_layer_" + std::to_string(l)));
-            }
-            if (std::count(maps.begin(), maps.end(), nullptr) > 0)
+            for (const LayerUse& u : uses) maps.push_back(set.Map(samples[k], group, u.name[term]));
+            if (maps.empty() || std::count(maps.begin(), maps.end(), nullptr) > 0)
                 throw InputError(set.dir, "missing maps for viewpoint sample " +
                                               std::to_string(samples[k]) + ", group " +
                                               std::to_string(group));
-            drawFrame(maps, coords[term], termExits[term], weights[k]);
+            addFrame(maps, coords[term], termExits[term], weights[k]);
         }
     }
+    drawFrames();
 }
 
 RenderedFrame Renderer::Render(const raster::Camera& camera, const RenderSettings& s) {

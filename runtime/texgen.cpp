@@ -8,6 +8,7 @@
 #include <numeric>
 
 #include "trace/fresnel.h"
+#include "trace/parallel.h"
 
 namespace pem::runtime {
 
@@ -49,21 +50,26 @@ std::vector<ExitRay> ReflectionExits(const PassMesh& mesh, const glm::vec3& eye,
 }
 
 std::vector<glm::vec3> ShellCoords(const std::vector<ExitRay>& exits, const trace::Shell& shell,
-                                   const glm::vec3& emOrigin) {
+                                   const glm::vec3& emOrigin, int threads) {
     std::vector<glm::vec3> coords(exits.size());
     const glm::dvec3 o(emOrigin);
-    for (size_t v = 0; v < exits.size(); ++v) {
-        const ExitRay& e = exits[v];
-        if (!e.valid) {
-            coords[v] = glm::vec3(0.0f, 0.0f, 1.0f);
-            continue;
+    constexpr size_t kChunk = 4096;
+    const size_t chunks = (exits.size() + kChunk - 1) / kChunk;
+    trace::ParallelRows(static_cast<int>(chunks), threads, [&](int c) {
+        const size_t end = std::min(exits.size(), (static_cast<size_t>(c) + 1) * kChunk);
+        for (size_t v = static_cast<size_t>(c) * kChunk; v < end; ++v) {
+            const ExitRay& e = exits[v];
+            if (!e.valid) {
+                coords[v] = glm::vec3(0.0f, 0.0f, 1.0f);
+                continue;
+            }
+            const std::optional<trace::ShellHit> hit = trace::Intersect(shell, {e.origin, e.dir});
+            coords[v] = hit ? trace::LookupVector(hit->point - o) : e.dir;
+            if (!std::isfinite(coords[v].x) || !std::isfinite(coords[v].y) ||
+                !std::isfinite(coords[v].z) || coords[v] == glm::vec3(0.0f))
+                coords[v] = e.dir;
         }
-        const std::optional<trace::ShellHit> hit = trace::Intersect(shell, {e.origin, e.dir});
-        coords[v] = hit ? trace::LookupVector(hit->point - o) : e.dir;
-        if (!std::isfinite(coords[v].x) || !std::isfinite(coords[v].y) ||
-            !std::isfinite(coords[v].z) || coords[v] == glm::vec3(0.0f))
-            coords[v] = e.dir;
-    }
+    });
     return coords;
 }
 
@@ -98,23 +104,39 @@ raster::Pass LayerPass(const PassMesh& mesh, const std::vector<uint32_t>& order,
                        const std::vector<glm::vec3>& coords, const std::vector<ExitRay>& exits,
                        const glm::mat4& viewProjection, const PassOptions& options) {
     raster::Pass pass;
-    pass.numUnits = 1;
-    pass.texture = {options.texture, options.texture};
-    pass.blend = options.blend;
+    FillLayerPass(MakePassGeometry(mesh, order, viewProjection), coords, exits, options, &pass);
+    return pass;
+}
+
+PassGeometry MakePassGeometry(const PassMesh& mesh, const std::vector<uint32_t>& order,
+                              const glm::mat4& viewProjection) {
+    PassGeometry g;
     const auto& pos = *mesh.positions;
-    pass.vertices.resize(pos.size());
-    for (size_t v = 0; v < pos.size(); ++v) {
-        raster::Vertex& out = pass.vertices[v];
-        out.pos = viewProjection * glm::vec4(pos[v], 1.0f);
-        out.coord[0] = coords[v];
-        out.color = options.modulate ? glm::vec4(exits[v].weight, 1.0f) : glm::vec4(1.0f);
-    }
-    pass.indices.reserve(order.size() * 3);
+    g.clip.resize(pos.size());
+    for (size_t v = 0; v < pos.size(); ++v) g.clip[v] = viewProjection * glm::vec4(pos[v], 1.0f);
+    g.indices.reserve(order.size() * 3);
     for (uint32_t i : order) {
         const glm::uvec3 t = (*mesh.triangles)[i];
-        pass.indices.insert(pass.indices.end(), {t.x, t.y, t.z});
+        g.indices.insert(g.indices.end(), {t.x, t.y, t.z});
     }
-    return pass;
+    return g;
+}
+
+void FillLayerPass(const PassGeometry& geometry, const std::vector<glm::vec3>& coords,
+                   const std::vector<ExitRay>& exits, const PassOptions& options,
+                   raster::Pass* pass) {
+    pass->numUnits = 1;
+    pass->texture = {options.texture, options.texture};
+    pass->blend = options.blend;
+    pass->vertices.resize(geometry.clip.size());
+    for (size_t v = 0; v < geometry.clip.size(); ++v) {
+        raster::Vertex& out = pass->vertices[v];
+        out.pos = geometry.clip[v];
+        out.coord[0] = coords[v];
+        out.coord[1] = glm::vec3(0.0f);
+        out.color = options.modulate ? glm::vec4(exits[v].weight, 1.0f) : glm::vec4(1.0f);
+    }
+    pass->indices = geometry.indices;
 }
 
 }  // namespace pem::runtime

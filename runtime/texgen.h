@@ -54,8 +54,9 @@ std::vector<ExitRay> ReflectionExits(const PassMesh& mesh, const glm::vec3& eye,
                                      const glm::vec3& f0);
 
 // Step: texture coordinates on a layer's shell.
+// `threads` > 1: vertex chunks in parallel (the same result).
 std::vector<glm::vec3> ShellCoords(const std::vector<ExitRay>& exits, const trace::Shell& shell,
-                                   const glm::vec3& emOrigin);
+                                   const glm::vec3& emOrigin, int threads = 1);
 
 // Step: the visible triangles, far to near.
 std::vector<uint32_t> DrawOrder(const PassMesh& mesh, const raster::Camera& camera);
@@ -72,5 +73,17 @@ glm::mat4 PassViewProjection(const PassMesh& mesh, const raster::Camera& camera)
 raster::Pass LayerPass(const PassMesh& mesh, const std::vector<uint32_t>& order,
                        const std::vector<glm::vec3>& coords, const std::vector<ExitRay>& exits,
                        const glm::mat4& viewProjection, const PassOptions& options);
+
+// LayerPass in two steps, for many passes over one mesh: what every layer shares (clip-space
+// positions, the index list), then each layer's pass written into `pass`, reusing its storage.
+struct PassGeometry {
+    std::vector<glm::vec4> clip;
+    std::vector<uint32_t> indices;
+};
+PassGeometry MakePassGeometry(const PassMesh& mesh, const std::vector<uint32_t>& order,
+                              const glm::mat4& viewProjection);
+void FillLayerPass(const PassGeometry& geometry, const std::vector<glm::vec3>& coords,
+                   const std::vector<ExitRay>& exits, const PassOptions& options,
+                   raster::Pass* pass);
 
 }  // namespace pem::runtime

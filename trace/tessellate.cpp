@@ -9,10 +9,14 @@
 #include "trace/tessellate.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <stdexcept>
-#include <unordered_map>
+#include <tuple>
+
+#include "trace/parallel.h"
 
 namespace pem::trace {
 
@@ -32,6 +36,48 @@ bool AnyPathsDiffer(const VertexPaths& a, const VertexPaths& b, double maxAngleD
            PathsDiffer(a.refraction, b.refraction, maxAngleDeg);
 }
 
+// Edge (sorted pair) → midpoint vertex: open addressing with linear probing (only inserted and
+// looked up, never iterated or erased).
+class EdgeHash {
+  public:
+    EdgeHash() { Rehash(1024); }
+    const uint32_t* Find(uint64_t key) const {
+        for (size_t i = Slot(key);; i = (i + 1) & mask_) {
+            if (keys_[i] == key) return &values_[i];
+            if (keys_[i] == kEmpty) return nullptr;
+        }
+    }
+    void Insert(uint64_t key, uint32_t value) {
+        if (2 * (size_ + 1) > keys_.size()) Rehash(2 * keys_.size());
+        size_t i = Slot(key);
+        while (keys_[i] != kEmpty) i = (i + 1) & mask_;
+        keys_[i] = key;
+        values_[i] = value;
+        ++size_;
+    }
+
+  private:
+    static constexpr uint64_t kEmpty = ~uint64_t{0};  // no edge has two indices 2^32 - 1
+    size_t Slot(uint64_t key) const {
+        return static_cast<size_t>((key * 0x9E3779B97F4A7C15ull) >> shift_);  // Fibonacci hashing
+    }
+    void Rehash(size_t capacity) {
+        std::vector<uint64_t> keys(capacity, kEmpty);
+        std::vector<uint32_t> values(capacity, 0);
+        keys.swap(keys_);
+        values.swap(values_);
+        mask_ = capacity - 1;
+        shift_ = 64 - std::countr_zero(capacity);
+        size_ = 0;
+        for (size_t i = 0; i < keys.size(); ++i)
+            if (keys[i] != kEmpty) Insert(keys[i], values[i]);
+    }
+    std::vector<uint64_t> keys_;
+    std::vector<uint32_t> values_;
+    size_t mask_ = 0, size_ = 0;
+    int shift_ = 64;
+};
+
 // A vertex of a refined triangle's boundary polygon with its exact reference coordinates.
 struct PolyVertex {
     uint32_t index = 0;
@@ -50,17 +96,54 @@ glm::dvec2 EdgePoint(size_t edge, double s) {
     return {0.0, 1.0 - s};
 }
 
-class Tessellator {
-  public:
-    Tessellator(const TessInput& input, const TessOptions& options)
-        : in_(input), opt_(options), maxDepth_(std::clamp(options.maxDepth, 0, kMaxDepthCap)) {}
+// Read-only during refinement: the input, its projections, which input triangles face away,
+// and the paths of the input vertices of front-facing triangles (traced before refinement).
+struct Shared {
+    const TessInput& in;
+    const TessOptions& opt;
+    int maxDepth = 0;
+    std::vector<glm::vec2> screen;
+    std::vector<uint8_t> backFacing;  // per input triangle
+    std::vector<std::optional<VertexPaths>> paths;
+};
 
-    TessellationResult Run();
+// True when endpoint a comes before b in (position, normal) order: a choice that does not depend
+// on the vertex numbering (the midpoint normal's fallback).
+bool Before(const glm::vec3& pa, const glm::vec3& na, const glm::vec3& pb, const glm::vec3& nb) {
+    return std::tie(pa.x, pa.y, pa.z, na.x, na.y, na.z) <
+           std::tie(pb.x, pb.y, pb.z, nb.x, nb.y, nb.z);
+}
+
+// The midpoint of an edge: position and normal, independent of the endpoints' order.
+void MidpointOf(const glm::vec3& pu, const glm::vec3& nu, const glm::vec3& pv, const glm::vec3& nv,
+                glm::vec3* position, glm::vec3* normal) {
+    *position = 0.5f * (pu + pv);
+    const glm::vec3 sum = nu + nv;
+    const float length = glm::length(sum);
+    *normal = length > 0.0f ? sum / length : (Before(pu, nu, pv, nv) ? nu : nv);
+}
+
+// Refines a run of consecutive input triangles. Vertices 0..nIn-1 are the shared input vertices,
+// the run's own new vertices follow (nIn + creation index). Runs over disjoint triangle ranges
+// are independent; merging them in range order gives the serial run's numbering (Tessellator).
+class Refiner {
+  public:
+    explicit Refiner(const Shared& shared)
+        : s_(shared), nIn_(static_cast<uint32_t>(shared.in.positions.size())) {}
+
+    void Run(size_t first, size_t last);
+
+    // Per new vertex (index − nIn): its data and the edge (run indices) it is the midpoint of.
+    std::vector<glm::vec3> positions, normals;
+    std::vector<VertexPaths> paths;
+    std::vector<glm::vec2> screen;
+    std::vector<int8_t> occluded;  // -1 not queried, 0 visible, 1 occluded
+    std::vector<std::array<uint32_t, 2>> parents;
+    std::vector<int8_t> inputOccluded;  // the same for the input vertices
+    std::vector<Tri> leaves;            // refined triangles, before t-junction removal
+    TessStats stats;                    // split*, backFacing and occludedTriangles
 
   private:
-    void Validate() const;
-    void InitVertices();
-    void RefineInputTriangle(const glm::uvec3& triangle);
     void Refine(const Tri& tri, int depth);
     bool WantsSplit(const Tri& tri, const std::array<bool, 3>& longEdges);
     void Split(const Tri& tri, const std::array<bool, 3>& longEdges, int depth);
@@ -68,38 +151,196 @@ class Tessellator {
     void Split3(const Tri& r, int depth);
     void Split4(const Tri& r, int depth);
     uint32_t Midpoint(uint32_t u, uint32_t v);
-    uint32_t AddVertex(const glm::vec3& position, const glm::vec3& normal);
-    void Trace(uint32_t v);
     bool Occluded(uint32_t v);
     double ScreenLength(uint32_t u, uint32_t v) const;
-    TriangleGeometry Geometry(const Tri& tri) const;
 
+    const glm::vec3& Position(uint32_t v) const {
+        return v < nIn_ ? s_.in.positions[v] : positions[v - nIn_];
+    }
+    const glm::vec3& Normal(uint32_t v) const {
+        return v < nIn_ ? s_.in.normals[v] : normals[v - nIn_];
+    }
+    const VertexPaths& Paths(uint32_t v) const { return v < nIn_ ? *s_.paths[v] : paths[v - nIn_]; }
+    const glm::vec2& Screen(uint32_t v) const { return v < nIn_ ? s_.screen[v] : screen[v - nIn_]; }
+
+    const Shared& s_;
+    const uint32_t nIn_;
+    EdgeHash midpoints_;  // edge (sorted pair, run indices) → midpoint vertex
+};
+
+void Refiner::Run(size_t first, size_t last) {
+    for (size_t i = first; i < last; ++i) {
+        const glm::uvec3& t = s_.in.triangles[i];
+        const Tri tri{t.x, t.y, t.z};
+        if (s_.backFacing[i]) {
+            ++stats.backFacingTriangles;
+            leaves.push_back(tri);
+            continue;
+        }
+        Refine(tri, 0);
+    }
+}
+
+void Refiner::Refine(const Tri& tri, int depth) {
+    std::array<bool, 3> longEdges{};
+    for (size_t k = 0; k < 3; ++k) {
+        // !(len <= t): a non-finite projection counts as long.
+        longEdges[k] = !(ScreenLength(tri[k], tri[(k + 1) % 3]) <= s_.opt.maxEdgeSubpixels);
+    }
+    if (depth < s_.maxDepth && WantsSplit(tri, longEdges)) {
+        Split(tri, longEdges, depth);
+    } else {
+        leaves.push_back(tri);
+    }
+}
+
+// Cheapest test first: some edge long, then the paths, then (ray queries) the occlusion.
+bool Refiner::WantsSplit(const Tri& tri, const std::array<bool, 3>& longEdges) {
+    if (!longEdges[0] && !longEdges[1] && !longEdges[2]) return false;
+    bool differ = false;
+    for (size_t k = 0; k < 3 && !differ; ++k) {
+        differ = AnyPathsDiffer(Paths(tri[k]), Paths(tri[(k + 1) % 3]), s_.opt.maxAngleDeg);
+    }
+    if (!differ) return false;
+    if (Occluded(tri[0]) && Occluded(tri[1]) && Occluded(tri[2])) {
+        ++stats.occludedTriangles;
+        return false;
+    }
+    return true;
+}
+
+// Rotate so that the split edges come first (1-to-2: edge 0; 1-to-3: edges 0 and 1), keeping the
+// winding.
+void Refiner::Split(const Tri& tri, const std::array<bool, 3>& longEdges, int depth) {
+    const int count = static_cast<int>(std::count(longEdges.begin(), longEdges.end(), true));
+    size_t first = 0;
+    for (size_t k = 0; k < 3; ++k) {
+        const bool isFirst = count == 1 ? longEdges[k] : !longEdges[k];
+        if (isFirst) first = count == 1 ? k : (k + 1) % 3;
+    }
+    const Tri r{tri[first], tri[(first + 1) % 3], tri[(first + 2) % 3]};
+    if (count == 1) Split2(r, depth);
+    if (count == 2) Split3(r, depth);
+    if (count == 3) Split4(tri, depth);
+}
+
+void Refiner::Split2(const Tri& r, int depth) {
+    ++stats.split2;
+    const uint32_t m = Midpoint(r[0], r[1]);
+    Refine({r[0], m, r[2]}, depth + 1);
+    Refine({m, r[1], r[2]}, depth + 1);
+}
+
+// Edges r0-r1 and r1-r2 split; the quad (r0, m0, m1, r2) is cut along its shorter screen diagonal.
+void Refiner::Split3(const Tri& r, int depth) {
+    ++stats.split3;
+    const uint32_t m0 = Midpoint(r[0], r[1]);
+    const uint32_t m1 = Midpoint(r[1], r[2]);
+    Refine({m0, r[1], m1}, depth + 1);
+    if (ScreenLength(m0, r[2]) < ScreenLength(r[0], m1)) {
+        Refine({r[0], m0, r[2]}, depth + 1);
+        Refine({m0, m1, r[2]}, depth + 1);
+    } else {
+        Refine({r[0], m0, m1}, depth + 1);
+        Refine({r[0], m1, r[2]}, depth + 1);
+    }
+}
+
+void Refiner::Split4(const Tri& r, int depth) {
+    ++stats.split4;
+    const uint32_t m0 = Midpoint(r[0], r[1]);
+    const uint32_t m1 = Midpoint(r[1], r[2]);
+    const uint32_t m2 = Midpoint(r[2], r[0]);
+    Refine({r[0], m0, m2}, depth + 1);
+    Refine({m0, r[1], m1}, depth + 1);
+    Refine({m2, m1, r[2]}, depth + 1);
+    Refine({m0, m1, m2}, depth + 1);
+}
+
+// The shared midpoint of edge (u, v): looked up in the hash, else created and traced once.
+uint32_t Refiner::Midpoint(uint32_t u, uint32_t v) {
+    const uint64_t key = EdgeKey(u, v);
+    if (const uint32_t* m = midpoints_.Find(key)) return *m;
+    glm::vec3 position, normal;
+    MidpointOf(Position(u), Normal(u), Position(v), Normal(v), &position, &normal);
+    const auto m = static_cast<uint32_t>(nIn_ + positions.size());
+    positions.push_back(position);
+    normals.push_back(normal);
+    screen.push_back(s_.in.project(position));
+    occluded.push_back(-1);
+    parents.push_back({u, v});
+    paths.push_back(s_.in.evaluate(position, normal));
+    midpoints_.Insert(key, m);
+    return m;
+}
+
+bool Refiner::Occluded(uint32_t v) {
+    if (!s_.in.occluded) return false;
+    int8_t& state = v < nIn_ ? inputOccluded[v] : occluded[v - nIn_];
+    if (state < 0) state = s_.in.occluded(Position(v)) ? 1 : 0;
+    return state == 1;
+}
+
+double Refiner::ScreenLength(uint32_t u, uint32_t v) const {
+    const glm::dvec2 d = glm::dvec2(Screen(u)) - glm::dvec2(Screen(v));
+    return std::sqrt(d.x * d.x + d.y * d.y);
+}
+
+class Tessellator {
+  public:
+    Tessellator(const TessInput& input, const TessOptions& options)
+        : shared_{input, options, std::clamp(options.maxDepth, 0, kMaxDepthCap), {}, {}, {}},
+          in_(input),
+          threads_(std::max(1, options.threads)) {}
+
+    TessellationResult Run();
+
+  private:
+    void Validate() const;
+    void TraceInputVertices();
+    void Merge(Refiner&& run, std::vector<int8_t>* occluded);
     void RemoveJunctions();
     void CollectEdge(uint32_t u, uint32_t v, double s0, double s1, size_t edge,
                      std::vector<PolyVertex>* poly) const;
-    void EarClip(std::vector<PolyVertex> poly);
+    void EarClip(std::vector<PolyVertex> poly, std::vector<glm::uvec3>* out) const;
     bool IsEar(const std::vector<PolyVertex>& poly, size_t i) const;
 
+    Shared shared_;
     const TessInput& in_;
-    const TessOptions& opt_;
-    const int maxDepth_;
+    const int threads_;
     TessellationResult out_;
-    std::vector<glm::vec2> screen_;                     // projected position per vertex
-    std::vector<int8_t> occluded_;                      // -1 not queried, 0 visible, 1 occluded
-    std::unordered_map<uint64_t, uint32_t> midpoints_;  // edge (sorted pair) → midpoint vertex
+    EdgeHash midpoints_;       // edge (sorted pair) → midpoint vertex
     std::vector<Tri> leaves_;  // refined triangles, before t-junction removal
 };
 
 TessellationResult Tessellator::Run() {
-    // Step 1: copy the input vertices (traced lazily, by the first front-facing triangle).
+    // Step 1: project the input vertices; trace those of front-facing triangles.
     Validate();
-    InitVertices();
-    // Step 2: refine every input triangle, in index order.
+    TraceInputVertices();
+    out_.positions = in_.positions;
+    out_.normals = in_.normals;
+    std::vector<int8_t> occluded(in_.positions.size(), -1);
+    // Step 2: refine runs of consecutive input triangles (in parallel), merged in index order.
     out_.stats.trianglesIn = in_.triangles.size();
-    for (const glm::uvec3& triangle : in_.triangles) RefineInputTriangle(triangle);
+    const size_t nTri = in_.triangles.size();
+    const size_t nRuns = threads_ == 1 ? 1 : std::min<size_t>(nTri, 4 * threads_);
+    std::vector<std::unique_ptr<Refiner>> runs(nRuns);
+    ParallelRows(static_cast<int>(nRuns), threads_, [&](int r) {
+        auto run = std::make_unique<Refiner>(shared_);
+        if (in_.occluded) run->inputOccluded.assign(in_.positions.size(), -1);
+        run->Run(nTri * static_cast<size_t>(r) / nRuns, nTri * static_cast<size_t>(r + 1) / nRuns);
+        runs[static_cast<size_t>(r)] = std::move(run);
+    });
+    out_.paths = std::move(shared_.paths);
+    for (std::unique_ptr<Refiner>& run : runs) Merge(std::move(*run), &occluded);
+    runs.clear();
     // Step 3: close the t-junctions between differently refined neighbours.
     RemoveJunctions();
     out_.stats.trianglesOut = out_.triangles.size();
+    out_.stats.vertexRays = static_cast<size_t>(std::count_if(
+        out_.paths.begin(), out_.paths.end(), [](const auto& p) { return p.has_value(); }));
+    out_.stats.occlusionQueries = static_cast<size_t>(
+        std::count_if(occluded.begin(), occluded.end(), [](int8_t o) { return o >= 0; }));
     out_.stats.untracedVertices =
         static_cast<size_t>(std::count(out_.paths.begin(), out_.paths.end(), std::nullopt));
     return std::move(out_);
@@ -121,173 +362,101 @@ void Tessellator::Validate() const {
     }
 }
 
-void Tessellator::InitVertices() {
-    out_.positions = in_.positions;
-    out_.normals = in_.normals;
-    out_.paths.assign(in_.positions.size(), std::nullopt);
-    occluded_.assign(in_.positions.size(), -1);
-    screen_.reserve(in_.positions.size());
-    for (const glm::vec3& p : in_.positions) screen_.push_back(in_.project(p));
-}
-
-void Tessellator::RefineInputTriangle(const glm::uvec3& triangle) {
-    const Tri tri{triangle.x, triangle.y, triangle.z};
-    if (in_.backFacing && in_.backFacing(Geometry(tri))) {
-        ++out_.stats.backFacingTriangles;
-        leaves_.push_back(tri);
-        return;
+// Every vertex of a front-facing input triangle is traced (the serial refinement would trace them
+// lazily, with the same calls).
+void Tessellator::TraceInputVertices() {
+    const size_t n = in_.positions.size();
+    shared_.screen.resize(n);
+    for (size_t v = 0; v < n; ++v) shared_.screen[v] = in_.project(in_.positions[v]);
+    std::vector<uint8_t> wanted(n, 0);
+    shared_.backFacing.assign(in_.triangles.size(), 0);
+    for (size_t i = 0; i < in_.triangles.size(); ++i) {
+        const glm::uvec3& t = in_.triangles[i];
+        TriangleGeometry g;
+        for (int k = 0; k < 3; ++k) {
+            g.positions[static_cast<size_t>(k)] = in_.positions[t[k]];
+            g.normals[static_cast<size_t>(k)] = in_.normals[t[k]];
+        }
+        if (in_.backFacing && in_.backFacing(g)) {
+            shared_.backFacing[i] = 1;
+        } else {
+            wanted[t.x] = wanted[t.y] = wanted[t.z] = 1;
+        }
     }
-    for (uint32_t v : tri) Trace(v);
-    Refine(tri, 0);
+    shared_.paths.assign(n, std::nullopt);
+    constexpr size_t kChunk = 256;
+    const size_t chunks = (n + kChunk - 1) / kChunk;
+    ParallelRows(static_cast<int>(chunks), threads_, [&](int c) {
+        for (size_t v = static_cast<size_t>(c) * kChunk; v < std::min(n, (c + 1) * kChunk); ++v)
+            if (wanted[v]) shared_.paths[v] = in_.evaluate(in_.positions[v], in_.normals[v]);
+    });
 }
 
-void Tessellator::Refine(const Tri& tri, int depth) {
-    std::array<bool, 3> longEdges{};
-    for (size_t k = 0; k < 3; ++k) {
-        // !(len <= t): a non-finite projection counts as long.
-        longEdges[k] = !(ScreenLength(tri[k], tri[(k + 1) % 3]) <= opt_.maxEdgeSubpixels);
+// Appends a run's new vertices that the earlier runs did not create (in the run's creation
+// order), and its leaves renumbered.
+void Tessellator::Merge(Refiner&& run, std::vector<int8_t>* occluded) {
+    const auto nIn = static_cast<uint32_t>(in_.positions.size());
+    if (!run.inputOccluded.empty())
+        for (size_t v = 0; v < nIn; ++v)
+            if ((*occluded)[v] < 0) (*occluded)[v] = run.inputOccluded[v];
+    std::vector<uint32_t> global(run.positions.size());
+    auto map = [&](uint32_t v) { return v < nIn ? v : global[v - nIn]; };
+    for (size_t j = 0; j < run.positions.size(); ++j) {
+        const uint64_t key = EdgeKey(map(run.parents[j][0]), map(run.parents[j][1]));
+        if (const uint32_t* m = midpoints_.Find(key)) {
+            global[j] = *m;
+            int8_t& o = (*occluded)[*m];
+            if (o < 0) o = run.occluded[j];
+            continue;
+        }
+        global[j] = static_cast<uint32_t>(out_.positions.size());
+        midpoints_.Insert(key, global[j]);
+        out_.positions.push_back(run.positions[j]);
+        out_.normals.push_back(run.normals[j]);
+        out_.paths.emplace_back(std::move(run.paths[j]));
+        occluded->push_back(run.occluded[j]);
     }
-    if (depth < maxDepth_ && WantsSplit(tri, longEdges)) {
-        Split(tri, longEdges, depth);
-    } else {
-        leaves_.push_back(tri);
-    }
-}
-
-// Cheapest test first: some edge long, then the paths, then (ray queries) the occlusion.
-bool Tessellator::WantsSplit(const Tri& tri, const std::array<bool, 3>& longEdges) {
-    if (!longEdges[0] && !longEdges[1] && !longEdges[2]) return false;
-    bool differ = false;
-    for (size_t k = 0; k < 3 && !differ; ++k) {
-        differ =
-            AnyPathsDiffer(*out_.paths[tri[k]], *out_.paths[tri[(k + 1) % 3]], opt_.maxAngleDeg);
-    }
-    if (!differ) return false;
-    if (Occluded(tri[0]) && Occluded(tri[1]) && Occluded(tri[2])) {
-        ++out_.stats.occludedTriangles;
-        return false;
-    }
-    return true;
-}
-
-// Rotate so that the split edges come first (1-to-2: edge 0; 1-to-3: edges 0 and 1), keeping the
-// winding.
-void Tessellator::Split(const Tri& tri, const std::array<bool, 3>& longEdges, int depth) {
-    const int count = static_cast<int>(std::count(longEdges.begin(), longEdges.end(), true));
-    size_t first = 0;
-    for (size_t k = 0; k < 3; ++k) {
-        const bool isFirst = count == 1 ? longEdges[k] : !longEdges[k];
-        if (isFirst) first = count == 1 ? k : (k + 1) % 3;
-    }
-    const Tri r{tri[first], tri[(first + 1) % 3], tri[(first + 2) % 3]};
-    if (count == 1) Split2(r, depth);
-    if (count == 2) Split3(r, depth);
-    if (count == 3) Split4(tri, depth);
-}
-
-void Tessellator::Split2(const Tri& r, int depth) {
-    ++out_.stats.split2;
-    const uint32_t m = Midpoint(r[0], r[1]);
-    Refine({r[0], m, r[2]}, depth + 1);
-    Refine({m, r[1], r[2]}, depth + 1);
-}
-
-// Edges r0-r1 and r1-r2 split; the quad (r0, m0, m1, r2) is cut along its shorter screen diagonal.
-void Tessellator::Split3(const Tri& r, int depth) {
-    ++out_.stats.split3;
-    const uint32_t m0 = Midpoint(r[0], r[1]);
-    const uint32_t m1 = Midpoint(r[1], r[2]);
-    Refine({m0, r[1], m1}, depth + 1);
-    if (ScreenLength(m0, r[2]) < ScreenLength(r[0], m1)) {
-        Refine({r[0], m0, r[2]}, depth + 1);
-        Refine({m0, m1, r[2]}, depth + 1);
-    } else {
-        Refine({r[0], m0, m1}, depth + 1);
-        Refine({r[0], m1, r[2]}, depth + 1);
-    }
-}
-
-void Tessellator::Split4(const Tri& r, int depth) {
-    ++out_.stats.split4;
-    const uint32_t m0 = Midpoint(r[0], r[1]);
-    const uint32_t m1 = Midpoint(r[1], r[2]);
-    const uint32_t m2 = Midpoint(r[2], r[0]);
-    Refine({r[0], m0, m2}, depth + 1);
-    Refine({m0, r[1], m1}, depth + 1);
-    Refine({m2, m1, r[2]}, depth + 1);
-    Refine({m0, m1, m2}, depth + 1);
-}
-
-// The shared midpoint of edge (u, v): looked up in the hash, else created and traced once.
-uint32_t Tessellator::Midpoint(uint32_t u, uint32_t v) {
-    const uint64_t key = EdgeKey(u, v);
-    if (auto it = midpoints_.find(key); it != midpoints_.end()) return it->second;
-    const uint32_t lo = std::min(u, v), hi = std::max(u, v);
-    const glm::vec3 position = 0.5f * (out_.positions[lo] + out_.positions[hi]);
-    const glm::vec3 sum = out_.normals[lo] + out_.normals[hi];
-    const float length = glm::length(sum);
-    const glm::vec3 normal = length > 0.0f ? sum / length : out_.normals[lo];
-    const uint32_t m = AddVertex(position, normal);
-    midpoints_.emplace(key, m);
-    Trace(m);
-    return m;
-}
-
-uint32_t Tessellator::AddVertex(const glm::vec3& position, const glm::vec3& normal) {
-    out_.positions.push_back(position);
-    out_.normals.push_back(normal);
-    out_.paths.emplace_back(std::nullopt);
-    occluded_.push_back(-1);
-    screen_.push_back(in_.project(position));
-    return static_cast<uint32_t>(out_.positions.size() - 1);
-}
-
-void Tessellator::Trace(uint32_t v) {
-    if (out_.paths[v]) return;
-    const glm::vec3 position = out_.positions[v], normal = out_.normals[v];
-    out_.paths[v] = in_.evaluate(position, normal);
-    ++out_.stats.vertexRays;
-}
-
-bool Tessellator::Occluded(uint32_t v) {
-    if (!in_.occluded) return false;
-    if (occluded_[v] < 0) {
-        occluded_[v] = in_.occluded(out_.positions[v]) ? 1 : 0;
-        ++out_.stats.occlusionQueries;
-    }
-    return occluded_[v] == 1;
-}
-
-double Tessellator::ScreenLength(uint32_t u, uint32_t v) const {
-    const glm::dvec2 d = glm::dvec2(screen_[u]) - glm::dvec2(screen_[v]);
-    return std::sqrt(d.x * d.x + d.y * d.y);
-}
-
-TriangleGeometry Tessellator::Geometry(const Tri& tri) const {
-    TriangleGeometry g;
-    for (size_t k = 0; k < 3; ++k) {
-        g.positions[k] = out_.positions[tri[k]];
-        g.normals[k] = out_.normals[tri[k]];
-    }
-    return g;
+    for (const Tri& t : run.leaves) leaves_.push_back({map(t[0]), map(t[1]), map(t[2])});
+    out_.stats.split2 += run.stats.split2;
+    out_.stats.split3 += run.stats.split3;
+    out_.stats.split4 += run.stats.split4;
+    out_.stats.backFacingTriangles += run.stats.backFacingTriangles;
+    out_.stats.occludedTriangles += run.stats.occludedTriangles;
 }
 
 // Every refined triangle with extra vertices on its edges becomes the ear-clipped polygon of its
-// corners and those vertices.
+// corners and those vertices (runs of leaves in parallel, joined in leaf order).
 void Tessellator::RemoveJunctions() {
     const glm::dvec2 corners[3] = {{0.0, 0.0}, {1.0, 0.0}, {0.0, 1.0}};
-    for (const Tri& tri : leaves_) {
+    constexpr size_t kChunk = 4096;
+    const size_t chunks = (leaves_.size() + kChunk - 1) / kChunk;
+    std::vector<std::vector<glm::uvec3>> parts(chunks);
+    std::vector<size_t> junctions(chunks, 0);
+    ParallelRows(static_cast<int>(chunks), threads_, [&](int c) {
+        std::vector<glm::uvec3>& part = parts[static_cast<size_t>(c)];
         std::vector<PolyVertex> poly;
-        for (size_t k = 0; k < 3; ++k) {
-            poly.push_back({tri[k], corners[k]});
-            CollectEdge(tri[k], tri[(k + 1) % 3], 0.0, 1.0, k, &poly);
+        const size_t end = std::min(leaves_.size(), (c + 1) * kChunk);
+        for (size_t i = static_cast<size_t>(c) * kChunk; i < end; ++i) {
+            const Tri& tri = leaves_[i];
+            poly.clear();
+            for (size_t k = 0; k < 3; ++k) {
+                poly.push_back({tri[k], corners[k]});
+                CollectEdge(tri[k], tri[(k + 1) % 3], 0.0, 1.0, k, &poly);
+            }
+            if (poly.size() == 3) {
+                part.emplace_back(tri[0], tri[1], tri[2]);
+            } else {
+                ++junctions[static_cast<size_t>(c)];
+                EarClip(poly, &part);
+            }
         }
-        if (poly.size() == 3) {
-            out_.triangles.emplace_back(tri[0], tri[1], tri[2]);
-        } else {
-            ++out_.stats.junctionTriangles;
-            EarClip(std::move(poly));
-        }
+    });
+    size_t total = 0;
+    for (const auto& part : parts) total += part.size();
+    out_.triangles.reserve(total);
+    for (size_t c = 0; c < chunks; ++c) {
+        out_.triangles.insert(out_.triangles.end(), parts[c].begin(), parts[c].end());
+        out_.stats.junctionTriangles += junctions[c];
     }
 }
 
@@ -295,9 +464,9 @@ void Tessellator::RemoveJunctions() {
 // midpoint hash.
 void Tessellator::CollectEdge(uint32_t u, uint32_t v, double s0, double s1, size_t edge,
                               std::vector<PolyVertex>* poly) const {
-    const auto it = midpoints_.find(EdgeKey(u, v));
-    if (it == midpoints_.end()) return;
-    const uint32_t m = it->second;
+    const uint32_t* found = midpoints_.Find(EdgeKey(u, v));
+    if (!found) return;
+    const uint32_t m = *found;
     const double s = 0.5 * (s0 + s1);
     CollectEdge(u, m, s0, s, edge, poly);
     poly->push_back({m, EdgePoint(edge, s)});
@@ -305,7 +474,7 @@ void Tessellator::CollectEdge(uint32_t u, uint32_t v, double s0, double s1, size
 }
 
 // Repeatedly clip the valid ear whose new edge is shortest in world space (first on ties).
-void Tessellator::EarClip(std::vector<PolyVertex> poly) {
+void Tessellator::EarClip(std::vector<PolyVertex> poly, std::vector<glm::uvec3>* out) const {
     while (poly.size() > 3) {
         size_t best = poly.size();
         double bestLength = std::numeric_limits<double>::infinity();
@@ -322,10 +491,10 @@ void Tessellator::EarClip(std::vector<PolyVertex> poly) {
         if (best == poly.size()) throw std::logic_error("Tessellate: boundary polygon has no ear");
         const size_t prev = (best + poly.size() - 1) % poly.size();
         const size_t next = (best + 1) % poly.size();
-        out_.triangles.emplace_back(poly[prev].index, poly[best].index, poly[next].index);
+        out->emplace_back(poly[prev].index, poly[best].index, poly[next].index);
         poly.erase(poly.begin() + static_cast<std::ptrdiff_t>(best));
     }
-    out_.triangles.emplace_back(poly[0].index, poly[1].index, poly[2].index);
+    out->emplace_back(poly[0].index, poly[1].index, poly[2].index);
 }
 
 // Strictly convex at i, and no other polygon vertex in the closed triangle (prev, i, next).

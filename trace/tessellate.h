@@ -5,11 +5,18 @@
 // its screen-projected edges are longer than t subpixels — 1-to-4, 1-to-3 or 1-to-2, splitting only
 // the long edges. Midpoints are shared through an edge hash (so each vertex ray is traced once),
 // and the t-junctions left between differently refined neighbours are removed afterwards by
-// re-triangulating each triangle with all vertices found (recursively) on its edges.
+// re-triangulating each triangle with all vertices found (recursively) on its edges. A midpoint's
+// normal is its edge's normals summed and normalized (opposite normals: the one of the endpoint
+// first in (position, normal) order, so the choice never depends on the numbering).
 //
 // Conventions: output vertices 0..n-1 are the input vertices, new ones follow in creation order;
 // triangles keep the winding of their input triangle. Input triangles are processed in index
 // order, children in a fixed order: the output is a pure function of the input and callbacks.
+// Threads: the input vertices are traced in parallel chunks, then runs of consecutive input
+// triangles are refined in parallel (each with its own midpoint hash) and merged in index order,
+// which reproduces the serial numbering; the callbacks must then be thread-safe pure functions.
+// The output does not depend on the thread count; only `evaluate` may be called more than once
+// for a midpoint on the border of two runs.
 // Back-facing triangles are not refined and their vertices are not traced (unless a front-facing
 // triangle shares them); triangles whose three vertices are occluded are traced but not refined.
 //
@@ -60,10 +67,11 @@ struct TessOptions {
     double maxEdgeSubpixels = 3.0;  // t: edges at most this long on screen are not split
     double maxAngleDeg = 3.0;       // exit directions further apart than this differ
     int maxDepth = 10;              // bound on the refinement levels of one input triangle
+    int threads = 1;                // > 1: callbacks are called concurrently (see above)
 };
 
 struct TessStats {
-    size_t vertexRays = 0;        // evaluate calls (= traced vertices)
+    size_t vertexRays = 0;        // traced vertices (= evaluate calls with 1 thread)
     size_t occlusionQueries = 0;  // occluded calls
     size_t trianglesIn = 0;
     size_t trianglesOut = 0;

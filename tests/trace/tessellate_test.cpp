@@ -224,6 +224,38 @@ TEST(Tessellate, Deterministic) {
     EXPECT_EQ(a.stats, b.stats);
 }
 
+// Runs of input triangles refined on several threads and merged give the serial result: the
+// numbering, triangles, paths and statistics (a larger grid, some triangles back-facing, some
+// vertices occluded, so runs meet across refined borders).
+TEST(Tessellate, ThreadCountDoesNotChangeResult) {
+    TessInput in = Grid(12);
+    for (size_t v = 0; v < in.positions.size(); ++v)
+        if (in.positions[v].x > 10.5f) in.normals[v] = glm::vec3(0.0f, 0.0f, -1.0f);
+    in.project = Scaled(24.0f);
+    in.evaluate = [](const glm::vec3& p, const glm::vec3&) { return RegionPaths(p * 0.5f); };
+    in.backFacing = [](const TriangleGeometry& g) {
+        return g.normals[0].z < 0.0f && g.normals[1].z < 0.0f && g.normals[2].z < 0.0f;
+    };
+    in.occluded = [](const glm::vec3& p) { return p.y > 9.0f; };
+    const TessellationResult one = Tessellate(in, {});
+    EXPECT_GT(one.stats.backFacingTriangles, 0u);
+    EXPECT_GT(one.stats.occludedTriangles, 0u);
+    for (int threads : {2, 3, 7}) {
+        const TessellationResult many = Tessellate(in, {.threads = threads});
+        EXPECT_EQ(many.positions, one.positions) << threads;
+        EXPECT_EQ(many.normals, one.normals) << threads;
+        EXPECT_EQ(many.triangles, one.triangles) << threads;
+        EXPECT_EQ(many.stats, one.stats) << threads;
+        ASSERT_EQ(many.paths.size(), one.paths.size());
+        for (size_t v = 0; v < one.paths.size(); ++v) {
+            ASSERT_EQ(many.paths[v].has_value(), one.paths[v].has_value()) << v;
+            if (one.paths[v]) {
+                EXPECT_EQ(many.paths[v]->reflection, one.paths[v]->reflection);
+            }
+        }
+    }
+}
+
 TEST(Tessellate, IdenticalPathsNeverSplit) {
     TessInput in = Triangle({0, 0}, {100, 0}, {0, 100});
     Recorder rec{{}, [](const glm::vec3&) { return kPlain; }};
@@ -286,6 +318,21 @@ EvaluateFn AlwaysDiffer() {
     return [calls](const glm::vec3&, const glm::vec3&) {
         return MakePaths(++*calls, Event::Reflect, Rotated(0));
     };
+}
+
+// Opposite normals sum to zero: the midpoint takes the normal of the endpoint first in
+// (position, normal) order, whichever way round the edge is numbered.
+TEST(Tessellate, OppositeNormalsMidpointIndependentOfNumbering) {
+    for (bool swapped : {false, true}) {
+        TessInput in =
+            swapped ? Triangle({100, 0}, {0, 0}, {0, 100}) : Triangle({0, 0}, {100, 0}, {0, 100});
+        in.normals[swapped ? 1 : 0] = glm::vec3(0, 0, -1);  // the vertex at the origin
+        in.evaluate = AlwaysDiffer();
+        const TessellationResult r = Tessellate(in, {.maxDepth = 1});
+        ASSERT_EQ(r.positions.size(), 6u);
+        EXPECT_EQ(r.positions[3], glm::vec3(50, 0, 0));
+        EXPECT_EQ(r.normals[3], glm::vec3(0, 0, -1)) << swapped;
+    }
 }
 
 TEST(Tessellate, OnlyLongEdgesSplit) {

@@ -1,0 +1,71 @@
+#!/usr/bin/env bash
+# pipeline_cli.sh PEMREF DATA_DIR — the user-facing pipeline at a small size:
+#  1. scene (a): bake (3 samples), render every method and --stats, the scripted viewer, report;
+#     checks: files, statistics fields, viewer frames, report contents, and that off the sample
+#     circle (10° above) hybrid and layered PEM are closer to the ray tracer than the static EM;
+#  2. the mirror sphere: bake + report; the report leaves out the refraction term (no glass) and
+#     the PEM local layer (a convex reflector).
+set -euo pipefail
+pemref=$1 data=$2
+work=$(mktemp -d "${TMPDIR:-/tmp}/pem_pipeline.XXXXXX")
+trap 'rm -rf "$work"' EXIT
+py=python3
+[ -x /usr/bin/python3 ] && py=/usr/bin/python3
+
+# Step 1: scene (a).
+"$pemref" bake "$data/scenes/hybrid_glass_teapot.gltf" --out "$work/a" --views circle:3:10 \
+    --size 240x180 --spp 3 --res 64 --threads 2 --quiet
+for m in hybrid pem static traced; do
+  "$pemref" render "$work/a/pem" --view orbit:5:10:1 -o "$work/a/$m.png" --method "$m" \
+      --threads 2 --quiet --stats "$work/a/$m.json"
+done
+"$pemref" render "$work/a/pem" --view sample:1 -o "$work/a/single.exr" --method pem --layers 1 \
+    --threads 2 --quiet
+"$pemref" view "$work/a/pem" --keys "l1k2m" --cols 40 --rows 12 --threads 2 > "$work/a/view.txt"
+"$pemref" report "$work/a" --threads 2 --reference-spp 5 --no-stability --quiet
+# Step 2: the mirror sphere.
+"$pemref" bake "$data/scenes/mirror_sphere.gltf" --out "$work/s" --views circle:2:10 \
+    --size 96x72 --spp 2 --res 16 --threads 2 --quiet
+"$pemref" report "$work/s" --threads 2 --reference-spp 2 --no-stability --quiet
+
+"$py" - "$work" <<'PY'
+import json, os, sys
+w = sys.argv[1]
+def fail(msg):
+    print("FAIL:", msg); sys.exit(1)
+for m in ["hybrid", "pem", "static", "traced"]:
+    if not os.path.getsize(f"{w}/a/{m}.png"): fail(f"{m}.png empty")
+    st = json.load(open(f"{w}/a/{m}.json"))
+    for k in ["vertex_rays", "triangles_after_tessellation", "ray_tracing_seconds",
+              "tessellation_seconds", "texgen_seconds", "rasterization_seconds", "frame_seconds",
+              "ray_tracer", "time_reduction", "ray_reduction", "vs_ray_tracer"]:
+        if k not in st: fail(f"{m}.json lacks {k}")
+    if m == "hybrid" and not (st["vertex_rays"] > 0 and st["ray_tracer"]["rays"] > st["vertex_rays"]):
+        fail("hybrid: vertex rays not fewer than the ray tracer's")
+if not os.path.getsize(f"{w}/a/single.exr"): fail("single-layer render missing")
+view = open(f"{w}/a/view.txt", encoding="utf-8").read()
+frames = view.count("--- frame ")
+if frames != 6: fail(f"viewer printed {frames} frames, 6 expected")
+if "\u2580" not in view and "\u2584" not in view: fail("viewer frames have no half blocks")
+for status in ["hybrid az 0", "hybrid az 5", "pem az 5", "static-em az 5"]:
+    if status not in view: fail(f"viewer status '{status}' missing")
+r = json.load(open(f"{w}/a/report.json"))
+res = r["results"]
+methods = {x["method"] for x in res}
+for m in ["static EM", "single-layer PEM", "layered PEM", "hybrid", "ray tracer"]:
+    if m not in methods: fail(f"report lacks {m}")
+if len(res) != 27: fail(f"{len(res)} results, 27 expected (3 positions x 9)")
+above = {(x["method"], x["setting"]): x["float"]["rmse"] for x in res if x["position"] == "10° above"}
+static = above[("static EM", "")]
+for key in [("hybrid", "t=5"), ("hybrid", "t=3"), ("layered PEM", "")]:
+    if not above[key] < static: fail(f"10° above: {key} RMSE {above[key]} not below static EM {static}")
+svg = open(f"{w}/a/report.svg").read()
+if svg.count('class="marker"') != 27: fail("report.svg: one marker per result expected")
+s = json.load(open(f"{w}/s/report.json"))
+decisions = " | ".join(x["decision"] for x in s["leftOut"])
+if "refraction (T) term" not in decisions: fail("mirror sphere: refraction term not left out: " + decisions)
+if "PEM local layer" not in decisions: fail("mirror sphere: local layer not left out: " + decisions)
+print("PASS: 4 methods rendered with statistics, 6 viewer frames, 27 report results; "
+      f"10° above RMSE static {static:.4f} > layered PEM {above[('layered PEM', '')]:.4f}, "
+      f"hybrid t=5 {above[('hybrid', 't=5')]:.4f}; mirror sphere left out: {decisions}")
+PY

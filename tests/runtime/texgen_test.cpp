@@ -1,0 +1,105 @@
+// SPDX-License-Identifier: MIT
+// texgen_test.cpp — the renderer's shortcuts give the same bytes as the plain calls: LayerPass
+// in two steps (shared geometry, per-layer fill into a reused pass), ShellCoords on threads, and
+// raster::RenderFrames (passes with the same geometry set up once) against one Render per frame.
+#include "runtime/texgen.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "raster/render.h"
+#include "tests/case_generator.h"
+
+namespace pem::runtime {
+namespace {
+
+// A bumpy grid in front of the camera with per-vertex exit rays.
+struct Fixture {
+    LensMesh mesh;
+    std::vector<ExitRay> exits;
+    raster::Camera camera;
+
+    Fixture() {
+        const int n = 60;
+        for (int y = 0; y <= n; ++y)
+            for (int x = 0; x <= n; ++x) {
+                const float u = static_cast<float>(x) / n - 0.5f,
+                            v = static_cast<float>(y) / n - 0.5f;
+                mesh.positions.emplace_back(u, v, 0.1f * std::sin(9.0f * u) * std::cos(7.0f * v));
+                mesh.normals.push_back(glm::normalize(glm::vec3(0.3f * u, 0.2f * v, 1.0f)));
+                ExitRay e;
+                e.origin = mesh.positions.back();
+                e.dir = glm::normalize(glm::vec3(u, v, 1.0f - u * v));
+                e.weight = glm::vec3(0.5f + u, 0.5f - v, 0.7f);
+                e.valid = (x + 3 * y) % 17 != 0;
+                exits.push_back(e);
+            }
+        for (int y = 0; y < n; ++y)
+            for (int x = 0; x < n; ++x) {
+                const auto id = [n](int i, int j) {
+                    return static_cast<uint32_t>(j * (n + 1) + i);
+                };
+                mesh.triangles.emplace_back(id(x, y), id(x + 1, y), id(x + 1, y + 1));
+                mesh.triangles.emplace_back(id(x, y), id(x + 1, y + 1), id(x, y + 1));
+            }
+        camera.eye = {0.1f, -0.2f, 1.6f};
+        camera.target = {0.0f, 0.0f, 0.0f};
+        camera.width = 96;
+        camera.height = 80;
+    }
+};
+
+TEST(Texgen, ShellCoordsSameForAnyThreadCount) {
+    const Fixture f;
+    const trace::Shell shell = trace::SphereShell{{0.0, 0.0, 0.2}, 1.5};
+    const std::vector<glm::vec3> one = ShellCoords(f.exits, shell, {0.0f, 0.0f, 0.1f});
+    for (int threads : {2, 3})
+        EXPECT_EQ(ShellCoords(f.exits, shell, {0.0f, 0.0f, 0.1f}, threads), one) << threads;
+}
+
+TEST(Texgen, FillLayerPassEqualsLayerPass) {
+    const Fixture f;
+    const PassMesh mesh = MeshOf(f.mesh);
+    const std::vector<uint32_t> order = DrawOrder(mesh, f.camera);
+    const glm::mat4 vp = PassViewProjection(mesh, f.camera);
+    const trace::Shell shell = trace::SphereShell{{0.0, 0.0, 0.0}, 2.0};
+    const std::vector<glm::vec3> coords = ShellCoords(f.exits, shell, {0.0f, 0.0f, 0.0f});
+    const PassGeometry geometry = MakePassGeometry(mesh, order, vp);
+    raster::Pass reused;
+    for (bool modulate : {true, false}) {
+        PassOptions po;
+        po.texture = modulate ? 1 : 0;
+        po.modulate = modulate;
+        po.blend = modulate ? raster::BlendState::Over() : raster::BlendState::None();
+        FillLayerPass(geometry, coords, f.exits, po, &reused);
+        EXPECT_EQ(reused, LayerPass(mesh, order, coords, f.exits, vp, po)) << modulate;
+    }
+}
+
+// Frames sharing pass geometry but not textures or blending, drawn together or one by one.
+TEST(Texgen, RenderFramesEqualsRenderPerFrame) {
+    const raster::Frame a = test::BenchmarkFrame(120, 90, 20, 40, 32);
+    raster::Frame b = a;
+    for (raster::Texture& t : b.textures)
+        for (auto& level : t.levels)
+            for (size_t i = 0; i < level.size(); ++i)
+                level[i] = static_cast<uint8_t>(255 - level[i]);
+    if (b.passes.size() > 1) b.passes[1].blend = raster::BlendState::Additive();
+    raster::Frame c = a;  // different geometry: drawn on its own
+    for (raster::Vertex& v : c.passes[0].vertices) v.pos.x *= 0.9f;
+    const raster::PreparedFrame pa(a), pb(b), pc(c);
+    for (int threads : {1, 3}) {
+        raster::RenderOptions opt;
+        opt.threads = threads;
+        const std::vector<raster::RenderResult> all = raster::RenderFrames({&pa, &pb, &pc}, opt);
+        ASSERT_EQ(all.size(), 3u);
+        EXPECT_EQ(all[0].image8, raster::Render(pa, opt).image8) << threads;
+        EXPECT_EQ(all[1].image8, raster::Render(pb, opt).image8) << threads;
+        EXPECT_EQ(all[2].image8, raster::Render(pc, opt).image8) << threads;
+        EXPECT_NE(all[0].image8, all[1].image8);
+    }
+}
+
+}  // namespace
+}  // namespace pem::runtime
