@@ -7,6 +7,8 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <future>
 #include <nlohmann/json.hpp>
 
 #include "infer/cube_map.h"
@@ -180,8 +182,27 @@ Target MakeTarget(const MapInput& in, int width, int height, bool hdr) {
     return t;
 }
 
+// Writes one map's files while the next map is solved (at most one write in flight, so memory
+// stays bounded); Wait() rethrows a failed write. The files do not depend on the overlap.
+class Writer {
+  public:
+    ~Writer() {
+        if (pending_.valid()) pending_.wait();
+    }
+    void Submit(std::function<void()> job) {
+        Wait();
+        pending_ = std::async(std::launch::async, std::move(job));
+    }
+    void Wait() {
+        if (pending_.valid()) pending_.get();
+    }
+
+  private:
+    std::future<void> pending_;
+};
+
 MapReport SolveMap(const MapInput& in, const InferRunOptions& opt, const TraceManifest& tm,
-                   const std::string& dir, MapReport rep) {
+                   const std::string& dir, MapReport rep, Writer* writer, double* writeSeconds) {
     const int w = tm.width, h = tm.height;
     // Step 1: the rendering matrix of the texgen pass.
     const auto t0 = Clock::now();
@@ -259,12 +280,16 @@ MapReport SolveMap(const MapInput& in, const InferRunOptions& opt, const TraceMa
         rep.directSeconds = d.seconds;
         rep.directRmse8 = rmse8(CubeMapFromSolution(FillUnobserved(sys, d.x), sys.layout));
     }
-    // Step 5: files.
-    const auto tWrite = Clock::now();
+    // Step 5: files (in the background; the exported system now, it is large).
     const std::string stem = dir + "/" + rep.name;
-    WriteCubeMapExr(map, stem + ".exr", opt.threads);
-    WriteTexturePng(ToTexture8(map, frame.textures[0].sampler), stem + ".png");
-    WriteLogCsv(res.log, stem + ".csv");
+    writer->Submit([map, sampler = frame.textures[0].sampler, log = res.log, stem, writeSeconds,
+                    threads = opt.threads]() {
+        const auto tWrite = Clock::now();
+        WriteCubeMapExr(map, stem + ".exr", threads);
+        WriteTexturePng(ToTexture8(map, sampler), stem + ".png");
+        WriteLogCsv(log, stem + ".csv");
+        *writeSeconds = Since(tWrite);
+    });
     if (!opt.exportDir.empty()) {
         char prefix[64];
         std::snprintf(prefix, sizeof prefix, "/v%03d_g%d_%s", rep.view, rep.group,
@@ -282,7 +307,6 @@ MapReport SolveMap(const MapInput& in, const InferRunOptions& opt, const TraceMa
                                              .dump(2)
                                       << "\n";
     }
-    rep.writeSeconds = Since(tWrite);
     return rep;
 }
 
@@ -371,6 +395,9 @@ InferRunReport RunInfer(const InferRunOptions& opt) {
             (g.pem ? 2 : 0);
     mapsTotal *= static_cast<int>(views.size());
     int mapsDone = 0;
+    // Per map: the background write's seconds (filled in when the write finishes).
+    std::vector<double> writeSeconds(static_cast<size_t>(mapsTotal) + 1, 0.0);
+    Writer writer;
 
     for (int v : views) {
         if (v < 0 || v >= static_cast<int>(tm.views.size()))
@@ -471,7 +498,8 @@ InferRunReport RunInfer(const InferRunOptions& opt) {
                     rep.name = std::string(tn) + "_layer_" + std::to_string(l);
                     if (opt.progress)
                         opt.progress(rep.name, static_cast<double>(mapsDone) / mapsTotal);
-                    report.maps.push_back(SolveMap(in, opt, tm, odir, rep));
+                    report.maps.push_back(SolveMap(in, opt, tm, odir, rep, &writer,
+                                                   &writeSeconds[report.maps.size()]));
                     ++mapsDone;
                 }
             }
@@ -489,7 +517,8 @@ InferRunReport RunInfer(const InferRunOptions& opt) {
                 rep.view = v, rep.group = g.index, rep.layer = 0, rep.term = tn;
                 rep.name = std::string(tn) + "_single";
                 if (opt.progress) opt.progress(rep.name, static_cast<double>(mapsDone) / mapsTotal);
-                report.maps.push_back(SolveMap(in, opt, tm, odir, rep));
+                report.maps.push_back(
+                    SolveMap(in, opt, tm, odir, rep, &writer, &writeSeconds[report.maps.size()]));
                 ++mapsDone;
             }
             // Step 5: mirror-only groups: the PEM paper's local/distant split; a reflector whose
@@ -525,15 +554,19 @@ InferRunReport RunInfer(const InferRunOptions& opt) {
                     rep.name = which == 0 ? "pem_local" : "pem_distant";
                     if (opt.progress)
                         opt.progress(rep.name, static_cast<double>(mapsDone) / mapsTotal);
-                    report.maps.push_back(SolveMap(in, opt, tm, odir, rep));
+                    report.maps.push_back(SolveMap(in, opt, tm, odir, rep, &writer,
+                                                   &writeSeconds[report.maps.size()]));
                     ++mapsDone;
                 }
                 if (convex) ++mapsDone;
             }
         }
+        writer.Wait();  // the sample is done when its files are
         sample.seconds = Since(tView);
         report.samples.push_back(sample);
     }
+    writer.Wait();
+    for (size_t k = 0; k < report.maps.size(); ++k) report.maps[k].writeSeconds = writeSeconds[k];
     if (opt.progress) opt.progress("done", 1.0);
     report.seconds = Since(tStart);
     return report;

@@ -71,7 +71,7 @@ struct InferRunOptions {
     bool hdr = false;              // float radiance, bounds [0, inf)
     double tessT = 5.0;            // tessellation t in subpixels (1 / spp pixels)
     std::vector<int> views;        // empty: all
-    bool single = true;            // also the single-layer map per term (`<τ>_single`)
+    bool single = false;           // also the single-layer map per term (`<τ>_single`)
     int neighbours = 0;            // samples on each side in the simultaneous solve (hybrid §4.3)
     double neighbourWeight = 0.5;  // their rows' confidence factor
     bool direct = false;           // also solve with the direct oracle (when it fits)

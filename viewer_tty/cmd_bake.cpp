@@ -123,6 +123,7 @@ int RunBakeJob(const BakeJob& a) {
                 o.threads = a.threads;
                 o.views = {v};
                 o.neighbours = a.neighbours;
+                o.single = true;  // the report compares the single-layer PEM
                 o.solve.maxIterations = 150;
                 o.solve.logEvery = 25;
                 o.solve.atol = 1e-4;

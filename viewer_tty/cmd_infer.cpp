@@ -24,7 +24,7 @@ struct InferArgs {
     std::string traceDir, out, views, exportDir;
     int res = 256, threads = 1, neighbours = 0, maxIterations = 150;
     double t = 5.0, smooth = 1e-3, pyramid = 1e-3, prior = 1e-6;
-    bool hdr = false, direct = false, quiet = false;
+    bool hdr = false, direct = false, single = false, quiet = false;
 };
 
 InferArgs& Args() {
@@ -85,6 +85,7 @@ void AddInferCommand(CLI::App& app) {
     sub->add_option("--prior", a.prior, "lambda_0")->check(CLI::Range(0.0, 1e6));
     sub->add_option("--export-system", a.exportDir, "write K, h, x in Matrix Market format");
     sub->add_flag("--hdr", a.hdr, "float maps bounded below by 0 only (default: 8-bit [0, 1])");
+    sub->add_flag("--single", a.single, "also the single-layer map per term (for comparisons)");
     sub->add_flag("--direct", a.direct, "also run the direct solver (small systems)");
     sub->add_flag("--quiet", a.quiet, "no progress line");
 }
@@ -101,6 +102,7 @@ int RunInferCommand() {
     o.tessT = a.t;
     o.direct = a.direct;
     o.neighbours = a.neighbours;
+    o.single = a.single;
     o.views = a.views.empty() ? std::vector<int>{} : ParseViewList(a.views);
     o.weights.smooth = a.smooth;
     o.weights.pyramid = a.pyramid;

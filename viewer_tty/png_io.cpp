@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // png_io.cpp — WritePng with libpng's setjmp/longjmp error protocol kept inside one function.
-// Conventions: 8-bit RGBA, no interlace, default compression; temp file + rename(2).
+// Conventions: 8-bit RGBA, no interlace, zlib level 1 (fast; the files are previews and
+// copies, not archives); temp file + rename(2).
 // Not here: anything that could leave a partially written `path`.
 #include "viewer_tty/png_io.h"
 
@@ -45,6 +46,7 @@ void EncodeRows(FILE* file, const raster::Image8& image, std::string* error) {
         png_set_IHDR(png, info, png_uint_32(image.width), png_uint_32(image.height), 8,
                      PNG_COLOR_TYPE_RGBA, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
                      PNG_FILTER_TYPE_DEFAULT);
+        png_set_compression_level(png, 1);
         png_write_info(png, info);
         png_write_image(png, rows.data());
         png_write_end(png, nullptr);
