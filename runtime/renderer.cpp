@@ -233,6 +233,9 @@ void Renderer::Impl::DrawGroup(const raster::Camera& camera, const RenderSetting
         stats->vertexRays += lp.counts.Total();
         stats->trianglesIn += lp.tess.stats.trianglesIn;
         stats->trianglesOut += lp.tess.triangles.size();
+        stats->backFacingTriangles += lp.tess.stats.backFacingTriangles;
+        stats->untracedVertices += lp.tess.stats.untracedVertices;
+        stats->tracedVertices += lp.tess.stats.vertexRays;
         mesh = MeshOf(lp.tess);
         const auto t0 = Clock::now();
         for (int term = 0; term < (g.glass ? 2 : 1); ++term)
@@ -411,7 +414,10 @@ RenderedFrame Renderer::Render(const raster::Camera& camera, const RenderSetting
 
     // Step 3: each lens group seen, from its maps; other groups ray traced.
     for (int g = 0; g < static_cast<int>(m.set.groups.size()); ++g) {
-        if (std::find(groupOf.begin(), groupOf.end(), g) == groupOf.end()) continue;
+        if (std::find(groupOf.begin(), groupOf.end(), g) == groupOf.end()) {
+            ++out.stats.groupsSkipped;  // hidden or off screen: no vertex rays, no passes
+            continue;
+        }
         std::vector<double> acc(static_cast<size_t>(w) * static_cast<size_t>(h) * 3, 0.0);
         m.DrawGroup(camera, s, g, samples, weights, &acc, &out.stats);
         for (size_t p = 0; p < groupOf.size(); ++p) {

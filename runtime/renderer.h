@@ -48,6 +48,10 @@ struct RenderSettings {
 struct FrameStats {
     uint64_t vertexRays = 0, backgroundRays = 0, tracerRays = 0;
     size_t trianglesIn = 0, trianglesOut = 0;
+    size_t backFacingTriangles = 0;  // input triangles neither traced, refined nor drawn
+    size_t untracedVertices = 0;     // vertices only back-facing triangles use: no rays
+    size_t tracedVertices = 0;
+    int groupsSkipped = 0;  // lens groups with maps that no pixel sees: no work at all
     double traceSeconds = 0.0, tessSeconds = 0.0, texgenSeconds = 0.0, rasterSeconds = 0.0;
     double backgroundSeconds = 0.0;
     double lensSeconds = 0.0;   // trace + tess + texgen + raster (the lens objects' frame)
