@@ -257,10 +257,10 @@ int RunReportJob(const ReportJob& a) {
                          std::to_string(a.referenceSpp) + "×" + std::to_string(a.referenceSpp) +
                          " samples per pixel.");
     data.notes.push_back(
-        "Left-out seconds are estimates: the R term's cost for a T term; solve time "
-        "scaled by the left-out/solved texel ratio for unsampled texels; the measured seconds per "
-        "traced vertex "
-        "times the untraced vertices for back-facing parts.");
+        "Left-out seconds are estimates: the R term's cost for a T term; the mean cost of one "
+        "of the group's maps for a map left out; solve time scaled by the left-out/solved texel "
+        "ratio for unsampled texels; seconds per traced vertex times the untraced vertices for "
+        "back-facing parts.");
 
     // Step 4: the stability suite.
     if (a.stability) {
