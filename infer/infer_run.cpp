@@ -130,7 +130,8 @@ struct MapInput {
     const trace::FloatImage* confidence = nullptr;
     raster::Pass pass;
     double weight = 1.0;               // multiplies the confidence
-    std::vector<MapInput> neighbours;  // the same map seen from nearby samples (hybrid §4.3)
+    bool own = true;                   // the sample's own view (counts in rmse_8bit)
+    std::vector<MapInput> neighbours;  // the same map seen by the other term and nearby samples
 };
 
 // Rows of b appended to a (the same columns).
@@ -212,12 +213,14 @@ MapReport SolveMap(const MapInput& in, const InferRunOptions& opt, const TraceMa
     ro.profile = raster::Profile::Linear;
     ro.threads = opt.threads;
     raster::RenderingMatrix a = raster::BuildRenderingMatrix(raster::PreparedFrame(frame), ro);
-    const int64_t sampleRows = a.rows;
+    // The sample's own observations (their frame and first row) for rmse_8bit.
+    std::vector<std::pair<raster::Frame, int64_t>> own{{frame, 0}};
     Target target = MakeTarget(in, w, h, opt.hdr);
-    // The nearby samples' rows below the sample's own (the simultaneous solve).
+    // The other term's and the nearby samples' rows below (the simultaneous solve).
     for (const MapInput& nb : in.neighbours) {
         raster::Frame nf = UnknownFrame(w, h, opt.res);
         nf.passes.push_back(nb.pass);
+        if (nb.own) own.emplace_back(nf, a.rows);
         AppendRows(&a, raster::BuildRenderingMatrix(raster::PreparedFrame(nf), ro));
         const Target t = MakeTarget(nb, w, h, opt.hdr);
         target.b.insert(target.b.end(), t.b.begin(), t.b.end());
@@ -256,19 +259,23 @@ MapReport SolveMap(const MapInput& in, const InferRunOptions& opt, const TraceMa
         rep.texelMin = std::min(rep.texelMin, v), rep.texelMax = std::max(rep.texelMax, v);
     rep.fillSeconds = Since(tFill);
     // Step 4: rmse_8bit — the 8-bit copy through the llvmpipe profile, on the system's mask.
+    const int64_t frameRows = int64_t{4} * w * h;
     auto rmse8 = [&](const CubeMapF& m) {
-        raster::Frame f8 = frame;
-        f8.textures[0] = ToTexture8(m, frame.textures[0].sampler);
+        const raster::Texture tex8 = ToTexture8(m, frame.textures[0].sampler);
         raster::RenderOptions fo;
         fo.threads = opt.threads;
-        const raster::RenderResult rr = raster::Render(raster::PreparedFrame(f8), fo);
         double sum = 0.0, weight = 0.0;
-        for (int64_t r : sys.imageRowOf) {
-            if (r >= sampleRows) break;  // the sample's own rows only
-            weight += target.confidence[static_cast<size_t>(r)];
-            const double d =
-                rr.image8.rgba[static_cast<size_t>(r)] / 255.0 - target.b[static_cast<size_t>(r)];
-            sum += target.confidence[static_cast<size_t>(r)] * d * d;
+        for (const auto& [ownFrame, first] : own) {
+            raster::Frame f8 = ownFrame;
+            f8.textures[0] = tex8;
+            const raster::RenderResult rr = raster::Render(raster::PreparedFrame(f8), fo);
+            for (int64_t r : sys.imageRowOf) {
+                if (r < first || r >= first + frameRows) continue;  // this observation's rows
+                weight += target.confidence[static_cast<size_t>(r)];
+                const double d = rr.image8.rgba[static_cast<size_t>(r - first)] / 255.0 -
+                                 target.b[static_cast<size_t>(r)];
+                sum += target.confidence[static_cast<size_t>(r)] * d * d;
+            }
         }
         return weight > 0.0 ? std::sqrt(sum / weight) : 0.0;
     };
@@ -390,9 +397,7 @@ InferRunReport RunInfer(const InferRunOptions& opt) {
         for (int v = 0; v < static_cast<int>(tm.views.size()); ++v) views.push_back(v);
     int mapsTotal = 0;
     for (const TracedGroup& g : tm.groups)
-        mapsTotal +=
-            (static_cast<int>(g.layers.size()) + (opt.single ? 1 : 0)) * (g.glass ? 2 : 1) +
-            (g.pem ? 2 : 0);
+        mapsTotal += static_cast<int>(g.layers.size()) + (opt.single ? 1 : 0) + (g.pem ? 2 : 0);
     mapsTotal *= static_cast<int>(views.size());
     int mapsDone = 0;
     // Per map: the background write's seconds (filled in when the write finishes).
@@ -449,77 +454,73 @@ InferRunReport RunInfer(const InferRunOptions& opt) {
             // The sample's own geometry first.
             std::stable_partition(geo.begin(), geo.end(),
                                   [v](const ViewGeometry& x) { return x.view == v; });
-            const runtime::LensPaths& lp = geo.front().lp;
-            const runtime::PassMesh mesh = runtime::MeshOf(lp.tess);
-            const std::vector<uint32_t>& order = geo.front().order;
-            const glm::mat4 vp = geo.front().vp;
-            // Step 3: one map per term and layer (the rows of every view in `geo`).
-            for (int term = 0; term < (g.glass ? 2 : 1); ++term) {
-                const char* tn = term == 0 ? "R" : "T";
-                struct TermImages {
-                    trace::FloatImage cov, conf;
-                    std::vector<runtime::ExitRay> exits;
-                };
-                std::vector<TermImages> ti;
+            // Step 3: one map per layer over both terms, [A_R; A_T] x = [b_R; b_T] (hybrid
+            // §4.3), with the rows of every view in `geo` (the sample's own first).
+            const int terms = g.glass ? 2 : 1;
+            struct TermImages {
+                trace::FloatImage cov, conf;
+                std::vector<runtime::ExitRay> exits;
+            };
+            std::vector<TermImages> ti[2];  // [term][view in geo]
+            for (int term = 0; term < terms; ++term)
                 for (const ViewGeometry& vg : geo) {
                     const std::string d =
                         opt.traceDir + "/" + ViewDir(vg.view) + "/group_" + std::to_string(g.index);
-                    ti.push_back({trace::ReadExr(d + "/b_" + tn + ".exr"),
-                                  trace::ReadExr(d + "/confidence_" + tn + ".exr"),
-                                  runtime::TermExits(vg.lp.tess.paths, term)});
+                    const char* tn = term == 0 ? "R" : "T";
+                    ti[term].push_back({trace::ReadExr(d + "/b_" + tn + ".exr"),
+                                        trace::ReadExr(d + "/confidence_" + tn + ".exr"),
+                                        runtime::TermExits(vg.lp.tess.paths, term)});
                 }
-                for (size_t l = 0; l < g.layers.size(); ++l) {
-                    if (g.layers[l].records == 0) {  // an empty cluster: no hits to match
-                        if (term == 0)
-                            report.leftOut.push_back(
-                                {v, g.index, "layer " + std::to_string(l), "its cluster is empty"});
-                        ++mapsDone;
-                        continue;
-                    }
-                    std::vector<trace::FloatImage> layers;
-                    for (const ViewGeometry& vg : geo)
-                        layers.push_back(trace::ReadExr(opt.traceDir + "/" + ViewDir(vg.view) +
-                                                        "/group_" + std::to_string(g.index) +
-                                                        "/layer_" + std::to_string(l) + "_" + tn +
-                                                        ".exr"));
-                    auto input = [&](size_t k) {
-                        MapInput in{&layers[k], &ti[k].cov, &ti[k].conf, {}, geo[k].weight, {}};
-                        in.pass = runtime::LayerPass(
-                            runtime::MeshOf(geo[k].lp.tess), geo[k].order,
-                            runtime::ShellCoords(ti[k].exits, g.layers[l].shell, g.emOrigin),
-                            ti[k].exits, geo[k].vp, {});
-                        return in;
-                    };
-                    MapInput in = input(0);
-                    for (size_t k = 1; k < geo.size(); ++k) in.neighbours.push_back(input(k));
-                    MapReport rep;
-                    rep.view = v, rep.group = g.index, rep.layer = static_cast<int>(l),
-                    rep.term = tn;
-                    rep.name = std::string(tn) + "_layer_" + std::to_string(l);
-                    if (opt.progress)
-                        opt.progress(rep.name, static_cast<double>(mapsDone) / mapsTotal);
-                    report.maps.push_back(SolveMap(in, opt, tm, odir, rep, &writer,
-                                                   &writeSeconds[report.maps.size()]));
-                    ++mapsDone;
-                }
-            }
-            // Step 4: the single-layer map per term: all the exit radiance on one sphere.
-            for (int term = 0; opt.single && term < (g.glass ? 2 : 1); ++term) {
-                const char* tn = term == 0 ? "R" : "T";
-                const trace::FloatImage b = trace::ReadExr(gdir + "/b_" + tn + ".exr");
-                const trace::FloatImage conf = trace::ReadExr(gdir + "/confidence_" + tn + ".exr");
-                const std::vector<runtime::ExitRay> exits = runtime::TermExits(lp.tess.paths, term);
-                MapInput in{&b, &b, &conf, {}, 1.0, {}};
-                in.pass = runtime::LayerPass(mesh, order,
-                                             runtime::ShellCoords(exits, g.singleShell, g.emOrigin),
-                                             exits, vp, {});
+            // One observation: (term, view k) against `image` on `shell`.
+            auto observe = [&](int term, size_t k, const trace::FloatImage* image,
+                               const trace::Shell& shell) {
+                const TermImages& t = ti[term][k];
+                MapInput in{image, &t.cov, &t.conf, {}, geo[k].weight, geo[k].view == v, {}};
+                in.pass = runtime::LayerPass(runtime::MeshOf(geo[k].lp.tess), geo[k].order,
+                                             runtime::ShellCoords(t.exits, shell, g.emOrigin),
+                                             t.exits, geo[k].vp, {});
+                return in;
+            };
+            auto solve = [&](const std::string& name, int layer,
+                             const std::vector<std::vector<trace::FloatImage>>& images,
+                             const trace::Shell& shell) {
+                MapInput in = observe(0, 0, &images[0][0], shell);
+                for (int term = 0; term < terms; ++term)
+                    for (size_t k = 0; k < geo.size(); ++k)
+                        if (term > 0 || k > 0)
+                            in.neighbours.push_back(observe(term, k, &images[term][k], shell));
                 MapReport rep;
-                rep.view = v, rep.group = g.index, rep.layer = 0, rep.term = tn;
-                rep.name = std::string(tn) + "_single";
-                if (opt.progress) opt.progress(rep.name, static_cast<double>(mapsDone) / mapsTotal);
+                rep.view = v, rep.group = g.index, rep.layer = layer;
+                rep.term = terms == 2 ? "R+T" : "R";
+                rep.name = name;
+                if (opt.progress) opt.progress(name, static_cast<double>(mapsDone) / mapsTotal);
                 report.maps.push_back(
                     SolveMap(in, opt, tm, odir, rep, &writer, &writeSeconds[report.maps.size()]));
                 ++mapsDone;
+            };
+            for (size_t l = 0; l < g.layers.size(); ++l) {
+                if (g.layers[l].records == 0) {  // an empty cluster: no hits to match
+                    report.leftOut.push_back(
+                        {v, g.index, "layer " + std::to_string(l), "its cluster is empty"});
+                    ++mapsDone;
+                    continue;
+                }
+                std::vector<std::vector<trace::FloatImage>> images(static_cast<size_t>(terms));
+                for (int term = 0; term < terms; ++term)
+                    for (const ViewGeometry& vg : geo)
+                        images[static_cast<size_t>(term)].push_back(
+                            trace::ReadExr(opt.traceDir + "/" + ViewDir(vg.view) + "/group_" +
+                                           std::to_string(g.index) + "/layer_" + std::to_string(l) +
+                                           "_" + (term == 0 ? "R" : "T") + ".exr"));
+                solve("layer_" + std::to_string(l), static_cast<int>(l), images, g.layers[l].shell);
+            }
+            // Step 4: the single-layer map: all the exit radiance (b_τ) on one sphere.
+            if (opt.single) {
+                std::vector<std::vector<trace::FloatImage>> images(static_cast<size_t>(terms));
+                for (int term = 0; term < terms; ++term)
+                    for (size_t k = 0; k < geo.size(); ++k)
+                        images[static_cast<size_t>(term)].push_back(ti[term][k].cov);
+                solve("single", 0, images, g.singleShell);
             }
             // Step 5: mirror-only groups: the PEM paper's local/distant split; a reflector whose
             // polygons all lie on its convex hull cannot see itself: no local layer.
@@ -543,7 +544,7 @@ InferRunReport RunInfer(const InferRunOptions& opt) {
                     report.leftOut.push_back({v, g.index, "PEM local layer",
                                               "every polygon lies on the reflector's convex hull"});
                 for (int which = convex ? 1 : 0; which < 2; ++which) {
-                    MapInput in{which == 0 ? &local : &distant, &distant, &conf, {}, 1.0, {}};
+                    MapInput in{which == 0 ? &local : &distant, &distant, &conf, {}, 1.0, true, {}};
                     in.pass = runtime::LayerPass(
                         bm, border,
                         runtime::ShellCoords(exits, which == 0 ? g.localShell : g.distantShell,

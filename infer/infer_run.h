@@ -1,17 +1,19 @@
 // SPDX-License-Identifier: MIT
 // infer_run.h — the whole `pemref infer` job: a `pemref trace` directory in, one PEM per
-// (viewpoint, lens group, term, layer) out, with infer.json's figures (issue 4).
+// (viewpoint, lens group, layer) out, with infer.json's figures (issue 4).
 //
 //   InferRunOptions o;  o.traceDir = "out/trace";  o.outDir = "out/pem";  o.res = 256;
 //   InferRunReport r = RunInfer(o);
 //
 // For each viewpoint sample and lens group (trace.json): the group's mesh adaptively tessellated
-// at the sample (runtime/lens_paths.h), and per term τ and layer l the texgen pass
-// (runtime/texgen.h) that looks the layer's cube map up at each vertex's exit-ray hit on the
-// layer's shell; raster/'s rendering matrix of that pass (linear profile: llvmpipe's texel
-// selection and weights), the target = the traced layer image layer_l_τ un-premultiplied by the
-// lens coverage (b_τ's alpha), weighted by confidence_τ × coverage; BuildSystem with the active
-// texels (observed + rings), LSMR with bounds ([0, 1] or HDR), FillUnobserved, files.
+// at the sample (runtime/lens_paths.h), and per layer l one map `layer_l` for both terms
+// (hybrid §4.3: [A_R; A_T] x = [b_R; b_T]): per term τ the texgen pass (runtime/texgen.h) that
+// looks the layer's cube map up at each vertex's exit-ray hit on the layer's shell; raster/'s
+// rendering matrix of that pass (linear profile: llvmpipe's texel selection and weights), the
+// target = the traced layer image layer_l_τ un-premultiplied by the lens coverage (b_τ's
+// alpha), weighted by confidence_τ × coverage; the terms' rows stacked; BuildSystem with the
+// active texels (observed + rings), LSMR with bounds ([0, 1] or HDR), FillUnobserved, files.
+// `single`: one more map, `single`, from the whole exit radiance b_τ on one sphere.
 // With `neighbours` = k, the layer maps' systems also hold the rows of the k samples on each side
 // (their own vertex paths, texgen and traced layer images, confidence × neighbourWeight): the
 // simultaneous solve of hybrid §4.3, so a map also fits what is seen just off its sample.
@@ -71,7 +73,7 @@ struct InferRunOptions {
     bool hdr = false;              // float radiance, bounds [0, inf)
     double tessT = 5.0;            // tessellation t in subpixels (1 / spp pixels)
     std::vector<int> views;        // empty: all
-    bool single = false;           // also the single-layer map per term (`<τ>_single`)
+    bool single = false;           // also the single-layer map (`single`, both terms)
     int neighbours = 0;            // samples on each side in the simultaneous solve (hybrid §4.3)
     double neighbourWeight = 0.5;  // their rows' confidence factor
     bool direct = false;           // also solve with the direct oracle (when it fits)

@@ -3,11 +3,11 @@
 // `pemref infer`) and the 8-bit cube maps the hardware gets, loaded on demand.
 //
 //   PemSet set = LoadPemSet("out/pem");
-//   const raster::Texture* t = set.Map(view, group, "R_layer_0");   // nullptr if absent
+//   const raster::Texture* t = set.Map(view, group, "layer_0");   // nullptr if absent
 //
-// Map names: {R,T}_layer_<l> (hybrid layers, l = 0 innermost) and pem_local / pem_distant
-// (mirror-only groups, PEM mode), under view_<vvv>/group_<g>/<name>.exr; the texture is the
-// 8-bit copy (infer/cube_map.h ToTexture8) with the default sampler (trilinear, seamless).
+// Map names: layer_<l> (hybrid layers, l = 0 innermost, both terms), single and pem_local /
+// pem_distant (mirror-only groups, PEM mode), under view_<vvv>/group_<g>/<name>.exr; the texture is
+// the 8-bit copy (infer/cube_map.h ToTexture8) with the default sampler (trilinear, seamless).
 // Errors: pem::InputError naming the file and the cause.
 // Not here: rendering (renderer.h).
 #pragma once

@@ -304,10 +304,10 @@ void Renderer::Impl::DrawGroup(const raster::Camera& camera, const RenderSetting
         drawFrames();
         return;
     }
-    // The layers drawn, innermost first: a shell and the map of each term. PEM split: local over
-    // distant (no local map: a convex reflector); single layer: the `<τ>_single` map on its
-    // sphere (older PEM directories without it: the outermost layer); layers of empty clusters
-    // have no maps.
+    // The layers drawn, innermost first: a shell and the map each term looks up (one map per
+    // layer serves both terms: it was inferred from both). PEM split: local over distant (no
+    // local map: a convex reflector); single layer: the `single` map on its sphere (without it:
+    // the outermost layer); layers of empty clusters have no maps.
     struct LayerUse {
         const trace::Shell* shell;
         std::string name[2];
@@ -317,13 +317,13 @@ void Renderer::Impl::DrawGroup(const raster::Camera& camera, const RenderSetting
     if (pemSplit) {
         if (set.Map(s0, group, "pem_local")) uses.push_back({&g.localShell, {"pem_local", ""}});
         uses.push_back({&g.distantShell, {"pem_distant", ""}});
-    } else if (s.layers == 1 && set.Map(s0, group, "R_single")) {
-        uses.push_back({&g.singleShell, {"R_single", "T_single"}});
+    } else if (s.layers == 1 && set.Map(s0, group, "single")) {
+        uses.push_back({&g.singleShell, {"single", "single"}});
     } else {
         for (int l = firstLayer; l < layers; ++l)
             if (!g.layerEmpty[static_cast<size_t>(l)])
                 uses.push_back({&g.layers[static_cast<size_t>(l)],
-                                {"R_layer_" + std::to_string(l), "T_layer_" + std::to_string(l)}});
+                                {"layer_" + std::to_string(l), "layer_" + std::to_string(l)}});
     }
     // Texture coordinates per term and layer (shared by the samples).
     const auto tc = Clock::now();
