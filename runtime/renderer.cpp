@@ -8,6 +8,7 @@
 #include <map>
 
 #include "raster/render.h"
+#include "runtime/convex_hull.h"
 #include "runtime/lens_paths.h"
 #include "runtime/texgen.h"
 #include "trace/embree_scene.h"
@@ -85,6 +86,7 @@ struct Renderer::Impl {
     std::unique_ptr<trace::Tracer> tracer;
     std::map<int, raster::Texture> staticMaps;
     std::map<const raster::Texture*, std::shared_ptr<const raster::PreparedTexture>> prepared;
+    std::map<int, std::vector<uint8_t>> hullOf;  // per mirror group: triangles on its hull
     glm::vec3 lensCentre{0.0f};
     int threads = 1;
 
@@ -243,8 +245,20 @@ void Renderer::Impl::DrawGroup(const raster::Camera& camera, const RenderSetting
         stats->texgenSeconds += Since(t0);
     }
     const auto t1 = Clock::now();
-    const PassGeometry geometry =
-        MakePassGeometry(mesh, DrawOrder(mesh, camera), PassViewProjection(mesh, camera));
+    const std::vector<uint32_t> order = DrawOrder(mesh, camera);
+    const glm::mat4 viewProjection = PassViewProjection(mesh, camera);
+    const PassGeometry geometry = MakePassGeometry(mesh, order, viewProjection);
+    // PEM split: polygons on the reflector's convex hull cannot see it, so the local layer is
+    // drawn on the other polygons only (PEM §4); the distant layer on all of them.
+    PassGeometry localGeometry;
+    if (pemSplit) {
+        auto it = hullOf.find(group);
+        if (it == hullOf.end()) it = hullOf.emplace(group, HullTriangles(base)).first;
+        std::vector<uint32_t> inner;
+        for (uint32_t t : order)
+            if (!it->second[t]) inner.push_back(t);
+        localGeometry = MakePassGeometry(mesh, inner, viewProjection);
+    }
     stats->texgenSeconds += Since(t1);
 
     // Step 2: one frame per (sample, term): the layers outermost first, inner ones over them.
@@ -257,7 +271,8 @@ void Renderer::Impl::DrawGroup(const raster::Camera& camera, const RenderSetting
     std::vector<double> frameWeights;
     auto addFrame = [&](std::vector<const raster::Texture*> maps,
                         const std::vector<std::vector<glm::vec3>>& coords,
-                        const std::vector<ExitRay>& exits, double weight) {
+                        const std::vector<ExitRay>& exits, double weight,
+                        const std::vector<const PassGeometry*>& geometries) {
         const auto tt = Clock::now();
         raster::Frame& frame = frames.emplace_back();
         auto& frameReady = ready.emplace_back();
@@ -277,7 +292,7 @@ void Renderer::Impl::DrawGroup(const raster::Camera& camera, const RenderSetting
             if (it == prepared.end())
                 it = prepared.emplace(maps[k], raster::PrepareTexture(*maps[k])).first;
             frameReady.push_back(it->second);
-            FillLayerPass(geometry, coords[k], exits, po, &frame.passes[slot]);
+            FillLayerPass(*geometries[k], coords[k], exits, po, &frame.passes[slot]);
         }
         stats->texgenSeconds += Since(tt);
     };
@@ -299,7 +314,7 @@ void Renderer::Impl::DrawGroup(const raster::Camera& camera, const RenderSetting
         for (int term = 0; term < (g.glass ? 2 : 1); ++term) {
             std::vector<glm::vec3> dirs(termExits[term].size());
             for (size_t v = 0; v < dirs.size(); ++v) dirs[v] = termExits[term][v].dir;
-            addFrame({&map}, {dirs}, termExits[term], 1.0);
+            addFrame({&map}, {dirs}, termExits[term], 1.0, {&geometry});
         }
         drawFrames();
         return;
@@ -325,6 +340,8 @@ void Renderer::Impl::DrawGroup(const raster::Camera& camera, const RenderSetting
                 uses.push_back({&g.layers[static_cast<size_t>(l)],
                                 {"layer_" + std::to_string(l), "layer_" + std::to_string(l)}});
     }
+    std::vector<const PassGeometry*> useGeometry(uses.size(), &geometry);
+    if (pemSplit && uses.size() == 2) useGeometry[0] = &localGeometry;  // local, then distant
     // Texture coordinates per term and layer (shared by the samples).
     const auto tc = Clock::now();
     std::vector<std::vector<glm::vec3>> coords[2];
@@ -340,7 +357,7 @@ void Renderer::Impl::DrawGroup(const raster::Camera& camera, const RenderSetting
                 throw InputError(set.dir, "missing maps for viewpoint sample " +
                                               std::to_string(samples[k]) + ", group " +
                                               std::to_string(group));
-            addFrame(maps, coords[term], termExits[term], weights[k]);
+            addFrame(maps, coords[term], termExits[term], weights[k], useGeometry);
         }
     }
     drawFrames();

@@ -11,7 +11,8 @@
 //    ones with premultiplied *over*, colour F·G per vertex; the terms' frames added.
 //  - Pem: the same without adaptive tessellation (the model's own vertices); mirror-only groups
 //    use the PEM split: the eye ray reflected off each vertex normal, `pem_distant` then
-//    `pem_local` over it, times Schlick's F per vertex. `layers` = 1 keeps the outermost layer
+//    `pem_local` over it (only on polygons off the reflector's convex hull), times Schlick's F
+//    per vertex. `layers` = 1 keeps the outermost layer
 //    only (single-layer PEM).
 //  - StaticEm: one cube map per group traced from its EM origin (the group itself left out),
 //    looked up with the exit directions of the hybrid paths (a shell at infinity), F·G.
