@@ -43,7 +43,8 @@ std::vector<ExitRay> ReflectionExits(const PassMesh& mesh, const glm::vec3& eye,
         const glm::vec3 r = d + 2.0f * cosTheta * n;
         glm::vec3 f;
         for (int c = 0; c < 3; ++c)
-            f[c] = static_cast<float>(trace::FresnelSchlick(cosTheta, f0[c]));
+            f[c] = static_cast<float>(
+                trace::FresnelSchlick(static_cast<double>(cosTheta), static_cast<double>(f0[c])));
         exits[v] = {p, glm::normalize(r), f, true};
     }
     return exits;

@@ -28,6 +28,7 @@
 #pragma once
 
 #include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -44,8 +45,10 @@ struct StabilityCase {
     std::string expected;  // the defined outcome, in words
     std::string outcome;   // what happened, one line
     bool passed = false;
-    double residual = NAN;   // relative residual, masked RMSE, or geometric error (see detail)
-    double condition = NAN;  // condition estimate (see detail for which)
+    double residual = std::numeric_limits<double>::quiet_NaN();  // relative residual, masked RMSE,
+                                                                 // or geometric error (see detail)
+    double condition =
+        std::numeric_limits<double>::quiet_NaN();  // condition estimate (see detail for which)
     double seconds = 0.0;
     std::string detail;  // the measurements behind the outcome
 };

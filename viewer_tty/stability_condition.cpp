@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "infer/sparse.h"
 
@@ -67,7 +68,7 @@ infer::CsrMatrix ScaledChannel0(const infer::LinearSystem& sys, double columnFlo
     const double floor = columnFloor * nonZero[nonZero.size() / 2];
     std::vector<int64_t> local(norms.size(), -1);
     Vector scale(norms.size(), 0.0);
-    double lo = INFINITY, hi = 0.0;
+    double lo = std::numeric_limits<double>::infinity(), hi = 0.0;
     for (size_t j = 0; j < norms.size(); j += 4) {
         if (norms[j] <= 0.0) {
             ++est->emptyColumns;

@@ -14,6 +14,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <limits>
 
 #include "infer/problem.h"
 
@@ -22,10 +23,14 @@ namespace pem::cli::stability {
 constexpr int kLanczosSteps = 80;
 
 struct ConditionEstimate {
-    double kappa = NAN, sigmaMax = NAN, sigmaMin = NAN;  // of B_k
-    int steps = 0;                                       // k
-    int64_t columns = 0, emptyColumns = 0;               // channel 0, kept / left out
-    double columnSpread = NAN;  // sqrt(max / min) of the non-zero unscaled squared column norms
+    double kappa = std::numeric_limits<double>::quiet_NaN(),
+           sigmaMax = std::numeric_limits<double>::quiet_NaN(),
+           sigmaMin = std::numeric_limits<double>::quiet_NaN();  // of B_k
+    int steps = 0;                                               // k
+    int64_t columns = 0, emptyColumns = 0;                       // channel 0, kept / left out
+    double columnSpread =
+        std::numeric_limits<double>::quiet_NaN();  // sqrt(max / min) of the non-zero unscaled
+                                                   // squared column norms
 };
 
 ConditionEstimate EstimateCondition(const infer::LinearSystem& system, double columnFloor,

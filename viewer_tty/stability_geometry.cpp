@@ -8,6 +8,7 @@
 #include <array>
 #include <cfloat>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <optional>
 
@@ -191,7 +192,7 @@ void TotalInternalReflection(StabilityCase* c) {
     const Ray ray{glm::vec3(0.0f), glm::vec3(glm::dvec3(std::sin(a), std::cos(a), 0.0))};
     const int maxDepth = 32;
     const std::optional<trace::GreedyPaths> paths = TraceGreedyPaths(ray, slab, maxDepth, 0.0);
-    double residual = NAN;
+    double residual = std::numeric_limits<double>::quiet_NaN();
     if (checks.Expect(paths.has_value(), "primary ray from inside found no surface")) {
         const trace::RayPath& r = paths->reflection;
         checks.Expect(PathSane(r) && PathSane(paths->refraction), "non-finite or unbounded path");
@@ -280,7 +281,8 @@ double SphereError(const trace::SphereShell& s, const glm::dvec3& p) {
     return std::fabs(glm::length(p - s.centre) - s.radius) / s.radius;
 }
 double BoxError(const trace::BoxShell& b, const glm::dvec3& p) {
-    double e = INFINITY;  // distance to the nearest face plane (the point lies on one)
+    double e = std::numeric_limits<double>::infinity();  // distance to the nearest face plane (the
+                                                         // point lies on one)
     for (int k = 0; k < 3; ++k)
         e = std::min({e, std::fabs(p[k] - b.min[k]), std::fabs(p[k] - b.max[k])});
     return e;

@@ -113,7 +113,7 @@ RenderFigures RenderAll(const raster::Frame& f, int threads, bool unitWeights) {
             out.weightError = std::max(out.weightError, std::fabs(sum - 1.0));
             ++out.rowsWithTaps;
         }
-        const double rendered = r.imageF.rgba[static_cast<size_t>(row)];
+        const double rendered = static_cast<double>(r.imageF.rgba[static_cast<size_t>(row)]);
         out.forwardError = std::max(out.forwardError, std::fabs(ax - rendered));
     }
     return out;

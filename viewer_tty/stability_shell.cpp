@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cfloat>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <vector>
 
@@ -116,7 +117,8 @@ void ClosedShellQueries(Checks* checks, ShellTally* tally) {
           boxError, checks, tally);
     // Cylinder: rays parallel to the axis on the wall, and axis-parallel inside an infinite one.
     const trace::CylinderShell cyl{glm::dvec2(0.0), 1.0, -1.0, 1.0};
-    const trace::CylinderShell tube{glm::dvec2(0.0), 1.0, -INFINITY, INFINITY};
+    const trace::CylinderShell tube{glm::dvec2(0.0), 1.0, -std::numeric_limits<double>::infinity(),
+                                    std::numeric_limits<double>::infinity()};
     const auto cylError = [](const glm::dvec3& p) {
         const double r = std::hypot(p.x, p.z);
         return std::min(std::fabs(r - 1.0), std::fabs(std::fabs(p.y) - 1.0));
@@ -181,8 +183,8 @@ void FarPlaneLookups(StabilityCase* c) {
             checks.Expect(glm::dot(glm::normalize(glm::dvec3(*v)), want) > 1.0 - 1e-6,
                           "cube lookup direction differs from the hit's");
         }
-    c->residual = NAN;
-    c->condition = NAN;
+    c->residual = std::numeric_limits<double>::quiet_NaN();
+    c->condition = std::numeric_limits<double>::quiet_NaN();
     c->detail = Format(
         "quad z = 0, rays from (0.3, 0.2, 1) with directions (1, 0, -e) and (1, 1, -e), e = 1e-30, "
         "1e-38, 1e-40, 1e-45 (the plane hit is at t = 1 / e): %d queries, %d hits beyond FLT_MAX "

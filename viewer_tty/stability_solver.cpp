@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
+#include <limits>
 
 #include "infer/problem.h"
 #include "infer/solver.h"
@@ -163,7 +164,8 @@ bool AllFinite(const Vector& x) {
 }
 
 std::pair<double, double> Range(const Vector& x) {
-    if (x.empty()) return {NAN, NAN};
+    if (x.empty())
+        return {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::quiet_NaN()};
     const auto [lo, hi] = std::minmax_element(x.begin(), x.end());
     return {*lo, *hi};
 }
