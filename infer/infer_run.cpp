@@ -41,26 +41,6 @@ glm::dvec3 Vec3(const json& j) {
     return {j.at(0).get<double>(), j.at(1).get<double>(), j.at(2).get<double>()};
 }
 
-trace::Shell ShellFrom(const json& j) {
-    const std::string type = j.at("type").get<std::string>();
-    if (type == "sphere")
-        return trace::SphereShell{Vec3(j.at("centre")), j.at("radius").get<double>()};
-    if (type == "ellipsoid")
-        return trace::EllipsoidShell{Vec3(j.at("centre")), Vec3(j.at("radii"))};
-    if (type == "box") return trace::BoxShell{Vec3(j.at("min")), Vec3(j.at("max"))};
-    if (type == "quad") {
-        trace::QuadShell q;
-        q.centre = Vec3(j.at("centre"));
-        q.normal = Vec3(j.at("normal"));
-        q.u = Vec3(j.at("u"));
-        q.v = Vec3(j.at("v"));
-        q.halfExtent = {j.at("half_extent").at(0).get<double>(),
-                        j.at("half_extent").at(1).get<double>()};
-        return q;
-    }
-    throw std::runtime_error("unknown shell type \"" + type + "\"");
-}
-
 // Files ------------------------------------------------------------------------------------------
 
 std::string ViewDir(int v) {
@@ -349,7 +329,7 @@ TraceManifest ReadTraceManifest(const std::string& traceDir) {
             std::vector<double> radii;
             std::vector<int64_t> records;
             for (const json& l : g.at("layers")) {
-                tg.layers.push_back({ShellFrom(l.at("shell")),
+                tg.layers.push_back({runtime::ShellFromJson(l.at("shell").dump()),
                                      l.at("shell").at("type").get<std::string>(),
                                      l.at("radius").get<double>(), l.at("records").get<int64_t>()});
                 radii.push_back(tg.layers.back().radius);
@@ -358,8 +338,10 @@ TraceManifest ReadTraceManifest(const std::string& traceDir) {
             tg.singleShell = runtime::SingleLayerShell(glm::dvec3(tg.emOrigin), radii, records);
             if (g.contains("pem_local_distant")) {
                 tg.pem = true;
-                tg.localShell = ShellFrom(g.at("pem_local_distant").at("local"));
-                tg.distantShell = ShellFrom(g.at("pem_local_distant").at("distant"));
+                tg.localShell =
+                    runtime::ShellFromJson(g.at("pem_local_distant").at("local").dump());
+                tg.distantShell =
+                    runtime::ShellFromJson(g.at("pem_local_distant").at("distant").dump());
             }
             tm.groups.push_back(std::move(tg));
         }

@@ -46,10 +46,6 @@ std::vector<int> ParseViewList(const std::string& text) {
     return out;
 }
 
-json Vec(const glm::vec3& v) {
-    return json::array({v.x, v.y, v.z});
-}
-
 }  // namespace
 
 void WriteTextAtomic(const std::string& path, const std::string& text) {
@@ -122,50 +118,10 @@ int RunInferCommand() {
     const infer::InferRunReport r = infer::RunInfer(o);
     line.Finish();
 
-    // infer.json: every figure.
-    json maps = json::array();
-    for (const infer::MapReport& m : r.maps) {
-        json jm = {
-            {"view", m.view},
-            {"group", m.group},
-            {"term", m.term},
-            {"layer", m.layer},
-            {"file", "view_" +
-                         std::string(3 - std::min<size_t>(3, std::to_string(m.view).size()), '0') +
-                         std::to_string(m.view) + "/group_" + std::to_string(m.group) + "/" +
-                         m.name + ".exr"},
-            {"rows", m.rows},
-            {"cols", m.cols},
-            {"nnz", m.nnz},
-            {"observed_texels", m.observedTexels},
-            {"filled_texels", m.filledTexels},
-            {"build_seconds", m.buildSeconds},
-            {"solve_seconds", m.solveSeconds},
-            {"iterations", m.iterations},
-            {"stop", m.stop},
-            {"rmse", m.rmse},
-            {"rmse_8bit", m.rmse8},
-            {"objective", m.objective},
-            {"texel_min", m.texelMin},
-            {"texel_max", m.texelMax},
-            {"timing",
-             {{"matrix_seconds", m.matrixSeconds},
-              {"render_seconds", m.renderSeconds},
-              {"fill_seconds", m.fillSeconds},
-              {"write_seconds", m.writeSeconds}}}};
-        if (m.directRmse8 >= 0.0) {
-            jm["rmse_8bit_direct"] = m.directRmse8;
-            jm["direct_seconds"] = m.directSeconds;
-        }
-        maps.push_back(jm);
-    }
-    json samples = json::array();
-    for (const infer::SampleReport& s : r.samples)
-        samples.push_back({{"view", s.view},
-                           {"seconds", s.seconds},
-                           {"path_seconds", s.pathSeconds},
-                           {"vertex_rays", s.vertexRays},
-                           {"triangles", s.triangles}});
+    // infer.json (every figure) and manifest.json (what a renderer needs), infer_json.h.
+    json maps = json::array(), samples = json::array();
+    for (const infer::MapReport& m : r.maps) maps.push_back(MapJson(m));
+    for (const infer::SampleReport& s : r.samples) samples.push_back(SampleJson(s));
     const json inferJson = {
         {"trace_dir", a.traceDir},
         {"res", a.res},
@@ -177,25 +133,8 @@ int RunInferCommand() {
         {"maps", maps},
         {"left_out", LeftOutJson(r.leftOut)}};
     WriteTextAtomic(a.out + "/infer.json", inferJson.dump(2) + "\n");
-
-    // manifest.json: what a renderer needs to use the maps.
-    json views = json::array();
-    for (const raster::Camera& c : r.trace.views)
-        views.push_back({{"eye", Vec(c.eye)}, {"target", Vec(c.target)}});
-    const json manifest = {{"format", "pemref_pem/1"},
-                           {"scene", r.trace.scenePath},
-                           {"trace_dir", a.traceDir},
-                           {"size", {r.trace.width, r.trace.height}},
-                           {"spp", r.trace.spp},
-                           {"res", a.res},
-                           {"profile", "llvmpipe"},
-                           {"hdr", a.hdr},
-                           {"views", views},
-                           {"inferred_views", o.views.empty() ? json(nullptr) : json(o.views)}};
-    std::ifstream traceJson(a.traceDir + "/trace.json");
-    json manifestOut = manifest;
-    manifestOut["lens_groups"] = json::parse(traceJson).at("lens_groups");
-    WriteTextAtomic(a.out + "/manifest.json", manifestOut.dump(2) + "\n");
+    WriteTextAtomic(a.out + "/manifest.json",
+                    ManifestJson(r.trace, a.traceDir, a.res, a.hdr, o.views).dump(2) + "\n");
     if (!a.quiet)
         std::printf("inferred %zu map(s) for %zu sample(s) in %.2f s -> %s\n", r.maps.size(),
                     r.samples.size(), r.seconds, a.out.c_str());

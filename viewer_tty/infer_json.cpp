@@ -32,7 +32,12 @@ json MapJson(const infer::MapReport& m) {
                {"rmse_8bit", m.rmse8},
                {"objective", m.objective},
                {"texel_min", m.texelMin},
-               {"texel_max", m.texelMax}};
+               {"texel_max", m.texelMax},
+               {"timing",
+                {{"matrix_seconds", m.matrixSeconds},
+                 {"render_seconds", m.renderSeconds},
+                 {"fill_seconds", m.fillSeconds},
+                 {"write_seconds", m.writeSeconds}}}};
     if (m.directRmse8 >= 0.0) {
         jm["rmse_8bit_direct"] = m.directRmse8;
         jm["direct_seconds"] = m.directSeconds;
