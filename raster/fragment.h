@@ -29,9 +29,14 @@ struct FragmentTarget {
 
 constexpr int kBandQuadRows = 4;  // rows of 2x2 quads per band (8 pixel rows)
 
-// Draws the triangles of one pass into the row bands owned by `worker` of `workers`: band b
-// (kBandQuadRows quad rows) belongs to worker b % workers.
-using DrawBandsFn = void (*)(const FragmentTarget& target, const Pass& pass,
+// One draw of a pass into one target.
+using PassDraw = std::pair<const FragmentTarget*, const Pass*>;
+
+// Draws the triangles of one pass geometry into the row bands owned by `worker` of `workers`
+// (band b of kBandQuadRows quad rows belongs to worker b % workers), for every draw: the draws'
+// passes have equal vertices and indices (render.cpp SameGeometry), so coverage, interpolation
+// and the filter footprints of equally shaped textures are computed once per lane group.
+using DrawBandsFn = void (*)(const std::vector<PassDraw>& draws,
                              const std::vector<TriangleSetup>& triangles, int worker, int workers);
 
 DrawBandsFn DrawBandsBase();

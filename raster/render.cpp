@@ -10,7 +10,6 @@
 #include <barrier>
 #include <cmath>
 #include <stdexcept>
-#include <thread>
 
 #include "raster/blend.h"
 #include "raster/clip.h"
@@ -18,6 +17,7 @@
 #include "raster/fragment.h"
 #include "raster/numeric.h"
 #include "raster/triangle_setup.h"
+#include "raster/worker_pool.h"
 
 namespace pem::raster {
 namespace {
@@ -93,22 +93,18 @@ void SetupTriangles(const Frame& frame, const Pass& pass, const PassVertices& pv
     }
 }
 
-// Runs fn(0) .. fn(workers - 1), each on its own thread (fn(0) on the caller's), with
-// denormals flushed when `ftz` (llvmpipe's draw and rasterizer threads both flush).
+// Runs fn(0) .. fn(workers - 1) at once (worker_pool.h), with denormals flushed when `ftz`
+// (llvmpipe's draw and rasterizer threads both flush).
 template <typename Fn>
 void RunWorkers(int workers, bool ftz, const Fn& fn) {
-    auto run = [&](int w) {
+    RunOnWorkers(workers, [&](int w) {
         if (ftz) {
             ScopedFlushToZero guard;
             fn(w);
         } else {
             fn(w);
         }
-    };
-    std::vector<std::thread> pool;
-    for (int w = 1; w < workers; ++w) pool.emplace_back(run, w);
-    run(0);
-    for (std::thread& th : pool) th.join();
+    });
 }
 
 // Triangles set up and drawn per batch, so the setups stay small and in cache.
@@ -117,8 +113,6 @@ constexpr int kBatchTriangles = 8192;
 // One pass drawn into one or more targets: draws[0]'s pass is set up (clipping, setup) and its
 // triangles drawn with each draw's own pass state and textures; every draw's pass must have the
 // same geometry (SameGeometry) in frames of the same size.
-using PassDraw = std::pair<const FragmentTarget*, const Pass*>;
-
 void DrawPass(const std::vector<PassDraw>& draws, std::vector<std::vector<TriangleSetup>>* chunks,
               PassVertices* pv) {
     const FragmentTarget& tg0 = *draws[0].first;
@@ -148,9 +142,7 @@ void DrawPass(const std::vector<PassDraw>& draws, std::vector<std::vector<Triang
             SetupTriangles(frame, pass, *pv, b0 + nb * w / workers, b0 + nb * (w + 1) / workers,
                            &mine);
             sync.arrive_and_wait();
-            for (const PassDraw& d : draws)
-                for (const std::vector<TriangleSetup>& c : *chunks)
-                    drawBands(*d.first, *d.second, c, w, workers);
+            for (const std::vector<TriangleSetup>& c : *chunks) drawBands(draws, c, w, workers);
             sync.arrive_and_wait();
         }
     });

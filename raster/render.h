@@ -52,8 +52,9 @@ std::shared_ptr<const PreparedTexture> PrepareTexture(const Texture& texture);
 class PreparedFrame {
   public:
     explicit PreparedFrame(const Frame& frame);
-    // With textures prepared earlier: prepared[i] must be PrepareTexture of a texture equal to
-    // frame.textures[i] (the frame's own copies are used only for the texel numbering).
+    // With textures prepared earlier: prepared[i] must be PrepareTexture of a texture with the
+    // kind, size and level count of frame.textures[i] (the frame's own copies are used only for
+    // the texel numbering: their texel bytes may be left empty).
     PreparedFrame(const Frame& frame, std::vector<std::shared_ptr<const PreparedTexture>> prepared);
     const Frame& frame() const { return *frame_; }
     const PreparedTexture& texture(int i) const { return *textures_[static_cast<size_t>(i)]; }

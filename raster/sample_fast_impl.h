@@ -126,85 +126,122 @@ void LodLanes(const PipeLodState& st, const float* rho2, int last, int32_t* leve
     }
 }
 
-void SampleFastSeamless(const PreparedFrame& frame, int textureIndex, const LaneCoords& coords,
-                        unsigned live, std::array<RgbaF, kLanes>* colour) {
-    const PreparedTexture& pt = frame.texture(textureIndex);
+// The filter footprints of eight lanes on a texture shape (size, levels, sampler): level pair,
+// MIP fraction, texel positions, bilinear fractions and seamless edge footprints per slot. They
+// depend on the coordinates and the shape only, so textures of one shape share them.
+struct FastFootprints {
+    const Texture* shape = nullptr;  // the texture they were computed for
+    int slots = 1;
+    alignas(32) int32_t face[kLanes], level[2][kLanes];
+    alignas(32) float frac[kLanes];
+    alignas(32) int32_t x0[2][kLanes], y0[2][kLanes], size[2][kLanes], edge[2][kLanes];
+    alignas(32) float a[2][kLanes], b[2][kLanes];
+    std::array<Footprint, kLanes> fp[2];
+    bool anyCorner[2] = {false, false};
+
+    // Whether footprints computed for `shape` serve texture t (same size, levels and sampler).
+    bool Serves(const Texture& t) const {
+        return shape && (shape == &t ||
+                         (shape->kind == t.kind && shape->width == t.width &&
+                          shape->NumLevels() == t.NumLevels() && shape->sampler == t.sampler));
+    }
+};
+
+void FastFootprintsOf(const PreparedTexture& pt, const LaneCoords& coords, FastFootprints* f) {
     const Texture& tex = *pt.source;
     const PipeLodState& st = pt.lod;
     const int last = tex.NumLevels() - 1;
     const float n = static_cast<float>(tex.width);
+    f->shape = &tex;
 
     // Face, projection and rho^2 per lane, then LOD.
-    alignas(32) int32_t face[kLanes], level0[kLanes], level1[kLanes];
-    alignas(32) float s[kLanes], t[kLanes], frac[kLanes], rho2[kLanes];
-    CubeLanes(coords, true, n, face, s, t, rho2);
-    LodLanes(st, rho2, last, level0, level1, frac);
+    alignas(32) float s[kLanes], t[kLanes], rho2[kLanes];
+    CubeLanes(coords, true, n, f->face, s, t, rho2);
+    LodLanes(st, rho2, last, f->level[0], f->level[1], f->frac);
 
     bool anyLerp = false;
-    for (int l = 0; l < kLanes; ++l) anyLerp |= frac[l] > 0.0f;
-    const int slots = anyLerp ? 2 : 1;
-    for (int slot = 0; slot < slots; ++slot) {
+    for (int l = 0; l < kLanes; ++l) anyLerp |= f->frac[l] > 0.0f;
+    f->slots = anyLerp ? 2 : 1;
+    for (int slot = 0; slot < f->slots; ++slot) {
         // Footprints: texel column/row, fractions and edge flags per lane.
-        alignas(32) int32_t x0[kLanes], y0[kLanes], size[kLanes], edge[kLanes];
-        alignas(32) float a[kLanes], b[kLanes];
-        const int32_t* lev = slot == 0 ? level0 : level1;
+        const int32_t* lev = f->level[slot];
         for (int l = 0; l < kLanes; ++l) {
             const int32_t sz = std::max(1, tex.width >> lev[l]);
             const float szf = static_cast<float>(sz);
             const float u = (s[l] > 0.0f ? s[l] : 0.0f) * szf - 0.5f;
             const float v = (t[l] > 0.0f ? t[l] : 0.0f) * szf - 0.5f;
             const float fu = std::floor(u), fv = std::floor(v);
-            a[l] = u - fu;
-            b[l] = v - fv;
+            f->a[slot][l] = u - fu;
+            f->b[slot][l] = v - fv;
             const int32_t ix = TruncOrMin(fu), iy = TruncOrMin(fv);
-            x0[l] = ix;
-            y0[l] = iy;
-            size[l] = sz;
-            edge[l] = (ix < 0) | (ix + 1 > sz - 1) | (iy < 0) | (iy + 1 > sz - 1);
+            f->x0[slot][l] = ix;
+            f->y0[slot][l] = iy;
+            f->size[slot][l] = sz;
+            f->edge[slot][l] = (ix < 0) | (ix + 1 > sz - 1) | (iy < 0) | (iy + 1 > sz - 1);
         }
         // Edge lanes: the general footprint (and the vector-wide corner decision).
-        std::array<Footprint, kLanes> fp;
         bool anyEdge = false, anyCorner = false;
-        for (int l = 0; l < kLanes; ++l) anyEdge |= edge[l] != 0;
+        for (int l = 0; l < kLanes; ++l) anyEdge |= f->edge[slot][l] != 0;
         if (anyEdge)
             for (int l = 0; l < kLanes; ++l)
-                if (edge[l]) {
-                    fp[l] = SeamlessLinear(s[l], t[l], face[l], size[l]);
-                    anyCorner |= fp[l].corner >= 0;
+                if (f->edge[slot][l]) {
+                    f->fp[slot][l] = SeamlessLinear(s[l], t[l], f->face[l], f->size[slot][l]);
+                    anyCorner |= f->fp[slot][l].corner >= 0;
                 }
+        f->anyCorner[slot] = anyCorner;
+    }
+}
+
+// Filters the live lanes of texture `pt` (of the footprints' shape).
+void FilterFast(const PreparedTexture& pt, const FastFootprints& f, unsigned live,
+                std::array<RgbaF, kLanes>* colour) {
+    for (int slot = 0; slot < f.slots; ++slot) {
+        const bool anyCorner = f.anyCorner[slot];
         for (int l = 0; l < kLanes; ++l) {
-            if (!(live & (1u << l)) || (slot == 1 && frac[l] == 0.0f)) continue;
-            const int lv = lev[l];
+            if (!(live & (1u << l)) || (slot == 1 && f.frac[l] == 0.0f)) continue;
+            const int lv = f.level[slot][l];
             const float* texels = pt.levelsF[static_cast<size_t>(lv)].data();
             RgbaF v;
-            if (edge[l]) {
-                v = FilterFootprint({texels, 0}, fp[l], anyCorner, 1.0f, nullptr);
+            if (f.edge[slot][l]) {
+                v = FilterFootprint({texels, 0}, f.fp[slot][l], anyCorner, 1.0f, nullptr);
             } else {
-                const int32_t sz = size[l];
-                const float* t00 =
-                    texels + 4 * static_cast<size_t>((face[l] * sz + y0[l]) * sz + x0[l]);
+                const int32_t sz = f.size[slot][l];
+                const int32_t base = (f.face[l] * sz + f.y0[slot][l]) * sz + f.x0[slot][l];
+                const float* t00 = texels + 4 * static_cast<size_t>(base);
                 const float* t10 = t00 + 4 * static_cast<size_t>(sz);
                 if (anyCorner) {
-                    Footprint f;
-                    f.a = a[l];
-                    f.b = b[l];
-                    const int32_t base = (face[l] * sz + y0[l]) * sz + x0[l];
-                    f.texel = {base, base + 1, base + sz, base + sz + 1};
-                    v = FilterFootprint({texels, 0}, f, true, 1.0f, nullptr);
+                    Footprint fp;
+                    fp.a = f.a[slot][l];
+                    fp.b = f.b[slot][l];
+                    fp.texel = {base, base + 1, base + sz, base + sz + 1};
+                    v = FilterFootprint({texels, 0}, fp, true, 1.0f, nullptr);
                 } else {
                     for (int c = 0; c < 4; ++c) {
-                        const float r0 = LerpF(a[l], t00[c], t00[4 + c]);
-                        const float r1 = LerpF(a[l], t10[c], t10[4 + c]);
-                        v[c] = LerpF(b[l], r0, r1);
+                        const float r0 = LerpF(f.a[slot][l], t00[c], t00[4 + c]);
+                        const float r1 = LerpF(f.a[slot][l], t10[c], t10[4 + c]);
+                        v[c] = LerpF(f.b[slot][l], r0, r1);
                     }
                 }
             }
             if (slot == 0)
                 (*colour)[l] = v;
             else
-                for (int c = 0; c < 4; ++c) (*colour)[l][c] = LerpF(frac[l], (*colour)[l][c], v[c]);
+                for (int c = 0; c < 4; ++c)
+                    (*colour)[l][c] = LerpF(f.frac[l], (*colour)[l][c], v[c]);
         }
     }
+}
+
+// The fast path of SampleLanes. `cache` (optional): footprints of an earlier texture; reused
+// when they serve this one, else recomputed into it.
+void SampleFastSeamless(const PreparedFrame& frame, int textureIndex, const LaneCoords& coords,
+                        unsigned live, std::array<RgbaF, kLanes>* colour,
+                        FastFootprints* cache = nullptr) {
+    const PreparedTexture& pt = frame.texture(textureIndex);
+    FastFootprints local;
+    FastFootprints& f = cache ? *cache : local;
+    if (!f.Serves(*pt.source)) FastFootprintsOf(pt, coords, &f);
+    FilterFast(pt, f, live, colour);
 }
 
 }  // namespace

@@ -32,15 +32,18 @@ bool UsesAosPath(const Texture& t) {
     return cube || (simple(s.wrapS) && simple(s.wrapT));
 }
 
+// `cache` (optional, fast path only): the footprints of these coordinates on an earlier
+// texture, reused when its shape serves this one (sample_fast_impl.h).
 void SampleLanes(const PreparedFrame& frame, int textureIndex, const RenderOptions& options,
                  const LaneCoords& coords, std::array<RgbaF, kLanes>* colour,
-                 std::array<PixelTaps, kLanes>* taps, unsigned live) {
+                 std::array<PixelTaps, kLanes>* taps, unsigned live,
+                 FastFootprints* cache = nullptr) {
     const PreparedTexture& pt = frame.texture(textureIndex);
     const Texture& tex = *pt.source;
     const SamplerState& s = tex.sampler;
     const PipeLodState& lodState = pt.lod;
     if (!taps && FastSeamlessApplies(tex, lodState, options)) {
-        SampleFastSeamless(frame, textureIndex, coords, live, colour);
+        SampleFastSeamless(frame, textureIndex, coords, live, colour, cache);
         return;
     }
     const bool needLod = s.mipFilter != MipFilter::None || s.minFilter != s.magFilter;

@@ -45,12 +45,11 @@ uint8_t ToUnorm(float v, UnormRounding r) {
     return UnormFromFloat(v, r == UnormRounding::HalfEven);
 }
 
-// Shades the covered lanes of one 4x2 group of one triangle and writes them.
-void ShadeGroup(const FragmentTarget& tg, const Pass& pass, const TriangleSetup& t, int gx, int gy,
-                unsigned mask) {
+// Shades the covered lanes of one 4x2 group of one triangle with the interpolated attributes
+// `qa` and writes them. `footprints` (one per unit) carry filter footprints from draw to draw.
+void ShadeGroup(const FragmentTarget& tg, const Pass& pass, const LaneAttribs& qa, int gx, int gy,
+                unsigned mask, std::array<FastFootprints, kMaxUnits>* footprints) {
     const Frame& frame = tg.frame->frame();
-    LaneAttribs qa;
-    InterpolateLanes(t, gx, gy, &qa);
     const bool wantTaps = tg.rows != nullptr;
 
     // Texture units.
@@ -61,7 +60,8 @@ void ShadeGroup(const FragmentTarget& tg, const Pass& pass, const TriangleSetup&
         for (int l = 0; l < kLanes; ++l)
             for (int k = 0; k < 3; ++k) lc.c[l][k] = qa.a[3 * u + k][l];
         isa::SampleLanes(*tg.frame, pass.texture[u], tg.options, lc, &tex[u],
-                         wantTaps && u == 0 ? &taps : nullptr, mask);
+                         wantTaps && u == 0 ? &taps : nullptr, mask,
+                         &(*footprints)[static_cast<size_t>(u)]);
     }
 
     const int co = ColourOffset(pass);
@@ -124,16 +124,27 @@ void ShadeGroup(const FragmentTarget& tg, const Pass& pass, const TriangleSetup&
     }
 }
 
-// Draws the 4x2 lane groups of one triangle that lie in the bands owned by `worker`. A group
-// is shaded when at least one of its pixels is covered (llvmpipe skips empty 8-lane vectors).
-void DrawTriangle(const FragmentTarget& tg, const Pass& pass, const TriangleSetup& t, int worker,
+// Draws the 4x2 lane groups of one triangle that lie in the bands owned by `worker`, into every
+// draw (draws share the pass geometry: the same coverage and attributes; each samples its own
+// textures and writes its own target). A group is shaded when at least one of its pixels is
+// covered (llvmpipe skips empty 8-lane vectors).
+void DrawTriangle(const PassDraw* draws, int numDraws, const TriangleSetup& t, int worker,
                   int workers) {
+    // A triangle in fewer bands than there are workers may lie in none of this worker's.
+    const int band0 = (t.y0 & ~1) / 2 / kBandQuadRows, band1 = t.y1 / 2 / kBandQuadRows;
+    if (band1 - band0 + 1 < workers) {
+        bool mine = false;
+        for (int b = band0; b <= band1; ++b) mine |= b % workers == worker;
+        if (!mine) return;
+    }
     // Edge values per lane relative to the group origin, so a group costs 8 adds per edge.
     int64_t laneOffset[3][kLanes];
     for (int e = 0; e < 3; ++e)
         for (int l = 0; l < kLanes; ++l)
             laneOffset[e][l] = -t.edge[e].dcdx * kLaneDx[l] + t.edge[e].dcdy * kLaneDy[l];
     const int gy0 = t.y0 & ~1, gx0 = t.x0 & ~3;
+    LaneAttribs qa;
+    std::array<FastFootprints, kMaxUnits> footprints;
     for (int gy = gy0; gy <= t.y1; gy += 2) {
         if ((gy / 2 / kBandQuadRows) % workers != worker) continue;
         unsigned rowMask = 0;  // lanes whose row lies inside the bounding box
@@ -152,14 +163,19 @@ void DrawTriangle(const FragmentTarget& tg, const Pass& pass, const TriangleSetu
                 for (int l = 0; l < kLanes; ++l)
                     mask &= ~(static_cast<unsigned>(base + laneOffset[e][l] <= 0) << l);
             }
-            if (mask) ShadeGroup(tg, pass, t, gx, gy, mask);
+            if (!mask) continue;
+            InterpolateLanes(t, gx, gy, &qa);
+            for (FastFootprints& f : footprints) f.shape = nullptr;  // new coordinates
+            for (int d = 0; d < numDraws; ++d)
+                ShadeGroup(*draws[d].first, *draws[d].second, qa, gx, gy, mask, &footprints);
         }
     }
 }
 
-void DrawBands(const FragmentTarget& tg, const Pass& pass,
-               const std::vector<TriangleSetup>& triangles, int worker, int workers) {
-    for (const TriangleSetup& t : triangles) DrawTriangle(tg, pass, t, worker, workers);
+void DrawBands(const std::vector<PassDraw>& draws, const std::vector<TriangleSetup>& triangles,
+               int worker, int workers) {
+    for (const TriangleSetup& t : triangles)
+        DrawTriangle(draws.data(), static_cast<int>(draws.size()), t, worker, workers);
 }
 
 }  // namespace

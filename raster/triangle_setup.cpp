@@ -9,6 +9,9 @@
 namespace pem::raster {
 namespace {
 
+// Bounding boxes up to this many pixels are tested for covering any pixel at all.
+constexpr int kSmallBoxPixels = 16;
+
 // Subpixel snap of one window coordinate: (v - 0.5) * 256 in float, cvtps2dq (RNE; NaN and
 // overflow give INT32_MIN).
 int32_t Snap(float v) {
@@ -69,6 +72,13 @@ bool SetupTriangle(const WindowVertex& in0, const WindowVertex& in1, const Windo
     out->y1 = std::min((maxY - 1 + 1) >> 8, height - 1);
     if (out->x0 > out->x1 || out->y0 > out->y1) return false;
     for (int i = 0; i < 3; ++i) out->edge[i] = MakeEdge(p, i);
+    // A small triangle that covers no pixel centre writes nothing: no attribute planes.
+    if ((out->x1 - out->x0 + 1) * (out->y1 - out->y0 + 1) <= kSmallBoxPixels) {
+        bool covers = false;
+        for (int y = out->y0; y <= out->y1 && !covers; ++y)
+            for (int x = out->x0; x <= out->x1 && !covers; ++x) covers = Inside(*out, x, y);
+        if (!covers) return false;
+    }
 
     // Attribute planes from the float positions (lp_state_setup.c's generated code).
     const float x0c = v[0]->x - 0.5f, y0c = v[0]->y - 0.5f;

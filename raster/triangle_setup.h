@@ -47,7 +47,8 @@ struct TriangleSetup {
 };
 
 // Sets up a triangle for a framebuffer of width x height. Returns false when nothing is drawn
-// (zero fixed-point area, or the bounding box misses the framebuffer).
+// (zero fixed-point area, the bounding box misses the framebuffer, or a small triangle covers
+// no pixel centre).
 bool SetupTriangle(const WindowVertex& v0, const WindowVertex& v1, const WindowVertex& v2,
                    int numAttribs, int width, int height, TriangleSetup* out);
 

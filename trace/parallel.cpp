@@ -6,8 +6,8 @@
 #include <atomic>
 #include <exception>
 #include <mutex>
-#include <thread>
-#include <vector>
+
+#include "raster/worker_pool.h"
 
 namespace pem::trace {
 
@@ -29,10 +29,8 @@ void ParallelRows(int rows, int threads, const std::function<void(int row)>& wor
             if (caller && progress) progress(finished, rows);
         }
     };
-    std::vector<std::thread> pool;
-    for (int t = 1; t < std::max(1, threads); ++t) pool.emplace_back(loop, false);
-    loop(true);
-    for (std::thread& t : pool) t.join();
+    raster::RunOnWorkers(std::clamp(threads, 1, std::max(1, rows)),
+                         [&](int worker) { loop(worker == 0); });
     if (error) std::rethrow_exception(error);
 }
 

@@ -5,7 +5,8 @@
 // must write only its own row's slots, so the result is the same for any thread count (the
 // callers merge per-row data in row order afterwards). `progress(done, total)` is called on the
 // calling thread only (which works too), after each row it finishes. An exception thrown for a
-// row is rethrown after all threads stop (the one of the lowest row).
+// row is rethrown after all threads stop (the one of the lowest row). The threads are raster/'s
+// kept helpers (worker_pool.h), not started per call.
 // Not here: work stealing, nested parallelism, SIMD.
 #pragma once
 

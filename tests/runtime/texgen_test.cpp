@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // texgen_test.cpp — the renderer's shortcuts give the same bytes as the plain calls: LayerPass
 // in two steps (shared geometry, per-layer fill into a reused pass), ShellCoords on threads, and
-// raster::RenderFrames (passes with the same geometry set up once) against one Render per frame.
+// raster::RenderFrames (passes with the same geometry set up once, lane groups shaded once for
+// all frames, filter footprints shared by textures of one shape) against one Render per frame.
 #include "runtime/texgen.h"
 
 #include <gtest/gtest.h>
@@ -88,16 +89,25 @@ TEST(Texgen, RenderFramesEqualsRenderPerFrame) {
     if (b.passes.size() > 1) b.passes[1].blend = raster::BlendState::Additive();
     raster::Frame c = a;  // different geometry: drawn on its own
     for (raster::Vertex& v : c.passes[0].vertices) v.pos.x *= 0.9f;
-    const raster::PreparedFrame pa(a), pb(b), pc(c);
+    // Same geometry, textures of another sampler state: no shared filter footprints.
+    raster::Frame d = b, e = b;
+    for (raster::Texture& t : d.textures) t.sampler.lodBias = 0.7f;
+    for (raster::Texture& t : e.textures) t.sampler.mipFilter = raster::MipFilter::Nearest;
+    const raster::PreparedFrame pa(a), pb(b), pc(c), pd(d), pe(e);
     for (int threads : {1, 3}) {
         raster::RenderOptions opt;
         opt.threads = threads;
-        const std::vector<raster::RenderResult> all = raster::RenderFrames({&pa, &pb, &pc}, opt);
-        ASSERT_EQ(all.size(), 3u);
+        const std::vector<raster::RenderResult> all =
+            raster::RenderFrames({&pa, &pb, &pc, &pd, &pe}, opt);
+        ASSERT_EQ(all.size(), 5u);
         EXPECT_EQ(all[0].image8, raster::Render(pa, opt).image8) << threads;
         EXPECT_EQ(all[1].image8, raster::Render(pb, opt).image8) << threads;
         EXPECT_EQ(all[2].image8, raster::Render(pc, opt).image8) << threads;
+        EXPECT_EQ(all[3].image8, raster::Render(pd, opt).image8) << threads;
+        EXPECT_EQ(all[4].image8, raster::Render(pe, opt).image8) << threads;
         EXPECT_NE(all[0].image8, all[1].image8);
+        EXPECT_NE(all[1].image8, all[3].image8);
+        EXPECT_NE(all[1].image8, all[4].image8);
     }
 }
 

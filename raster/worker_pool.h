@@ -1,0 +1,22 @@
+// SPDX-License-Identifier: MIT
+// worker_pool.h — run one function on several threads at once without starting threads per call:
+// the helpers are kept waiting between calls (a frame makes dozens of such calls; starting a
+// thread costs 20-100 µs here).
+//
+//   RunOnWorkers(2, [&](int w) { DrawMyBand(w); });   // w = 0 on the caller, 1 on a helper
+//
+// Conventions: fn(0) runs on the calling thread, fn(1) .. fn(workers - 1) on helper threads, all
+// at the same time (fn may wait on a std::barrier of `workers`); the call returns when every fn
+// has returned. One call uses the kept helpers at a time: a call made while another is running
+// (nested, or from another thread) starts its own threads, as before. An exception thrown by
+// any fn is rethrown after all have returned (the lowest worker's).
+// Not here: work distribution (the callers hand out rows or bands), priorities.
+#pragma once
+
+#include <functional>
+
+namespace pem::raster {
+
+void RunOnWorkers(int workers, const std::function<void(int worker)>& fn);
+
+}  // namespace pem::raster
