@@ -61,6 +61,8 @@ struct RowTracer {
                 points.push_back(tracer.DiffuseAt(rays[i], hits[i]));
             } else if (model == Model::Greedy && group >= 0) {
                 radiance[i] = tracer.TraceGreedy(rays[i], hits[i], group, counts).Radiance();
+            } else if (model == Model::Surroundings && group >= 0) {
+                continue;  // black: drawn from the maps
             } else {
                 taped.push_back(i);
                 tapeStart.push_back(tape.ops.size());
@@ -93,6 +95,12 @@ struct RowTracer {
             }
             out.image.Add(x, y, sum * invSamples);
             out.lensCoverage.At(x, y)[0] = lens * invSamples;
+            if (model == Model::Surroundings) {
+                const Hit& first = hits[static_cast<size_t>(x) * static_cast<size_t>(spp)];
+                out.lensGroup[static_cast<size_t>(y) * static_cast<size_t>(camera.width) +
+                              static_cast<size_t>(x)] =
+                    first.valid ? tracer.GroupOf(first.object) : -1;
+            }
         }
     }
 };
@@ -101,8 +109,13 @@ struct RowTracer {
 
 FrameResult RenderFrame(const Tracer& tracer, const raster::Camera& camera, int k, Model model,
                         int threads, const std::function<void(int, int)>& progress) {
-    FrameResult result{
-        FloatImage(camera.width, camera.height, 3), FloatImage(camera.width, camera.height, 1), {}};
+    FrameResult result{FloatImage(camera.width, camera.height, 3),
+                       FloatImage(camera.width, camera.height, 1),
+                       {},
+                       {}};
+    if (model == Model::Surroundings)
+        result.lensGroup.assign(
+            static_cast<size_t>(camera.width) * static_cast<size_t>(camera.height), -1);
     std::vector<RayCounts> rowCounts(static_cast<size_t>(camera.height));
     const raster::PixelRays pixelRays(camera);
     // Idle row tracers: each row takes one and gives it back, so the buffers are reused across

@@ -19,12 +19,16 @@
 
 namespace pem::trace {
 
-enum class Model { FullTree, Greedy };
+// FullTree: every sample's full ray tree. Greedy: the two-term model at lens objects.
+// Surroundings: the full tree everywhere but at lens objects, whose samples stay black (the rest
+// of a hybrid frame, renderer.h); `lensGroup` says which group each pixel's first sample hits.
+enum class Model { FullTree, Greedy, Surroundings };
 
 struct FrameResult {
     FloatImage image;         // RGB
     FloatImage lensCoverage;  // Y: fraction of the pixel's samples whose camera ray hits a lens
     RayCounts counts;
+    std::vector<int> lensGroup;  // Surroundings: per pixel, the first sample's group (-1: none)
 };
 
 FrameResult RenderFrame(const Tracer& tracer, const raster::Camera& camera, int k, Model model,

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // tracer_test.cpp — the ray tracer and the trace job: same bytes for 1 and 2 threads, greedy =
 // full tree for a pure mirror, RenderFrame (packets, deferred shading) = the single-ray path
-// sample by sample, bit for bit, the reference of the hybrid scene is finite, lit and shows the
+// sample by sample, bit for bit, the surroundings of a hybrid frame = the full tree off the
+// lenses, the reference of the hybrid scene is finite, lit and shows the
 // glass teapot, image channels in range (layer alpha, coverage, confidence), circle viewpoints.
 #include "trace/tracer.h"
 
@@ -83,6 +84,38 @@ TEST(Tracer, RenderFrameEqualsTheSingleRayPathBitForBit) {
             EXPECT_EQ(frame.counts.shadow, counts.shadow);
         }
     }
+}
+
+// Surroundings (the rest of a hybrid frame): at 1 sample per pixel, the single-ray full tree at
+// every pixel whose camera ray misses the lens groups, black at the others, and the group of
+// each pixel as a single camera ray sees it.
+TEST(Tracer, SurroundingsAreTheFullTreeOffTheLenses) {
+    const Scene scene = LoadScene(kHybrid);
+    const EmbreeDevice device({2, "auto"});
+    const EmbreeScene embree(device, scene);
+    const Tracer tracer(scene, embree);
+    const raster::Camera cam = CameraForSize(*scene.camera, 64, 48);
+    const FrameResult frame = RenderFrame(tracer, cam, 1, Model::Surroundings, 2);
+    ASSERT_EQ(frame.lensGroup.size(), static_cast<size_t>(cam.width * cam.height));
+    int lens = 0;
+    RayCounts counts;
+    for (int y = 0; y < cam.height; ++y)
+        for (int x = 0; x < cam.width; ++x) {
+            const Ray ray =
+                raster::PixelRay(cam, static_cast<float>(x) + 0.5f, static_cast<float>(y) + 0.5f);
+            const Hit hit = embree.Intersect(ray);
+            const int group = hit.valid ? tracer.GroupOf(hit.object) : -1;
+            const size_t p = static_cast<size_t>(y * cam.width + x);
+            EXPECT_EQ(frame.lensGroup[p], group) << x << "," << y;
+            const glm::vec3 expected = group >= 0 ? glm::vec3(0.0f) : tracer.Radiance(ray, counts);
+            const float* got = frame.image.At(x, y);
+            EXPECT_EQ(std::memcmp(got, &expected[0], 3 * sizeof(float)), 0) << x << "," << y;
+            lens += group >= 0;
+        }
+    EXPECT_GT(lens, 50);                           // the teapot and the cup are seen
+    EXPECT_LT(lens, cam.width * cam.height - 50);  // and so is the room
+    // No ray beyond the lenses' camera rays.
+    EXPECT_EQ(frame.counts.Total(), counts.Total() + static_cast<uint64_t>(lens));
 }
 
 TEST(Tracer, SameBytesForOneAndTwoThreads) {
