@@ -3,8 +3,8 @@
 #include "runtime/lens_paths.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
-#include <mutex>
 
 #include "trace/segment.h"
 
@@ -59,10 +59,9 @@ LensPaths TraceLensPaths(const trace::Tracer& tracer, const trace::EmbreeScene& 
     LensPaths out;
 
     // The tessellation traces the vertices (in parallel): each call's rays and time are summed
-    // under a lock (sums of integers and of durations do not depend on the order).
+    // in integer atomics (sums of integers do not depend on the order).
     const auto t0 = Clock::now();
-    std::mutex mutex;
-    double traceCpu = 0.0;
+    std::atomic<uint64_t> primary{0}, secondary{0}, shadow{0}, traceNs{0};
     trace::TessInput in;
     in.positions = mesh.positions;
     in.normals = mesh.normals;
@@ -73,16 +72,19 @@ LensPaths TraceLensPaths(const trace::Tracer& tracer, const trace::EmbreeScene& 
         const auto ts = Clock::now();
         trace::RayCounts counts;
         trace::VertexPaths paths = VertexRay(tracer, embree, camera.eye, group, p, counts);
-        const double seconds = Since(ts);
-        const std::lock_guard<std::mutex> lock(mutex);
-        out.counts += counts;
-        traceCpu += seconds;
+        traceNs += static_cast<uint64_t>(
+            std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - ts).count());
+        primary += counts.primary;
+        secondary += counts.secondary;
+        shadow += counts.shadow;
         return paths;
     };
     trace::TessOptions tess = options.tess;
     if (!options.adaptive) tess.maxDepth = 0;
     tess.threads = options.threads;
     out.tess = trace::Tessellate(in, tess);
+    out.counts = {primary.load(), secondary.load(), shadow.load()};
+    const double traceCpu = 1e-9 * static_cast<double>(traceNs.load());
     // The wall time split by the share of the threads' time spent in vertex rays.
     const double wall = Since(t0);
     out.traceSeconds = std::min(wall, traceCpu / std::max(1, options.threads));

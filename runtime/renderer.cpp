@@ -55,11 +55,24 @@ raster::BlendState PremultipliedOver() {
     return b;
 }
 
-// Adds weight · frame / 255 to acc (RGB per pixel).
-void Accumulate(const raster::Image8& img, double weight, std::vector<double>* acc) {
-    const size_t n = static_cast<size_t>(img.width) * static_cast<size_t>(img.height);
-    for (size_t p = 0; p < n; ++p)
-        for (size_t c = 0; c < 3; ++c) (*acc)[3 * p + c] += weight * img.rgba[4 * p + c] / 255.0;
+// Adds weight · frame / 255 to acc at the listed pixels (RGB per listed pixel).
+void Accumulate(const raster::Image8& img, double weight, const std::vector<uint32_t>& pixels,
+                std::vector<double>* acc) {
+    for (size_t k = 0; k < pixels.size(); ++k)
+        for (size_t c = 0; c < 3; ++c)
+            (*acc)[3 * k + c] += weight * img.rgba[4 * size_t{pixels[k]} + c] / 255.0;
+}
+
+// What a PreparedFrame needs of a texture it is given prepared: kind, size, sampler and level
+// count, without copying the texel bytes (render.h).
+raster::Texture Shape(const raster::Texture& t) {
+    raster::Texture s;
+    s.kind = t.kind;
+    s.width = t.width;
+    s.height = t.height;
+    s.sampler = t.sampler;
+    s.levels.resize(t.levels.size());
+    return s;
 }
 
 }  // namespace
@@ -93,7 +106,8 @@ struct Renderer::Impl {
     const raster::Texture& StaticMap(int group);
     void DrawGroup(const raster::Camera& camera, const RenderSettings& s, int group,
                    const std::vector<int>& samples, const std::vector<double>& weights,
-                   std::vector<double>* acc, FrameStats* stats);
+                   const std::vector<uint32_t>& pixels, std::vector<double>* acc,
+                   FrameStats* stats);
 };
 
 Renderer::Renderer(PemSet set, int threads) : impl_(std::make_unique<Impl>()) {
@@ -202,7 +216,8 @@ const raster::Texture& Renderer::Impl::StaticMap(int group) {
 
 void Renderer::Impl::DrawGroup(const raster::Camera& camera, const RenderSettings& s, int group,
                                const std::vector<int>& samples, const std::vector<double>& weights,
-                               std::vector<double>* acc, FrameStats* stats) {
+                               const std::vector<uint32_t>& pixels, std::vector<double>* acc,
+                               FrameStats* stats) {
     const PemGroup& g = set.groups[static_cast<size_t>(group)];
     const bool pemSplit = s.method == Method::Pem && g.pem;
     // Step 1: vertex paths (hybrid: adaptive; PEM: the model's vertices).
@@ -226,7 +241,7 @@ void Renderer::Impl::DrawGroup(const raster::Camera& camera, const RenderSetting
     } else {
         LensPathsOptions lo;
         lo.tess.maxEdgeSubpixels = s.t;
-        lo.supersampling = set.spp;
+        lo.supersampling = s.subpixels > 0 ? s.subpixels : set.spp;
         lo.adaptive = s.method != Method::Pem;
         lo.threads = s.threads;
         lp = TraceLensPaths(*tracer, *embree, camera, group, lo);
@@ -287,7 +302,7 @@ void Renderer::Impl::DrawGroup(const raster::Camera& camera, const RenderSetting
             po.texture = static_cast<int>(slot);
             po.modulate = true;
             po.blend = slot == 0 ? raster::BlendState::None() : PremultipliedOver();
-            frame.textures.push_back(*maps[k]);
+            frame.textures.push_back(Shape(*maps[k]));
             auto it = prepared.find(maps[k]);
             if (it == prepared.end())
                 it = prepared.emplace(maps[k], raster::PrepareTexture(*maps[k])).first;
@@ -304,7 +319,8 @@ void Renderer::Impl::DrawGroup(const raster::Camera& camera, const RenderSetting
         std::vector<const raster::PreparedFrame*> ptrs;
         for (const raster::PreparedFrame& p : pf) ptrs.push_back(&p);
         const std::vector<raster::RenderResult> rr = raster::RenderFrames(ptrs, ro);
-        for (size_t f = 0; f < rr.size(); ++f) Accumulate(rr[f].image8, frameWeights[f], acc);
+        for (size_t f = 0; f < rr.size(); ++f)
+            Accumulate(rr[f].image8, frameWeights[f], pixels, acc);
         stats->rasterSeconds += Since(tr);
     };
     const int layers = static_cast<int>(g.layers.size());
@@ -380,36 +396,14 @@ RenderedFrame Renderer::Render(const raster::Camera& camera, const RenderSetting
         out.stats.totalSeconds = Since(tStart);
         return out;
     }
-    // Step 1: the rest of the frame, one camera ray per pixel; which group each pixel sees.
+    // Step 1: the rest of the frame, one camera ray per pixel (trace/render.h's rows: camera and
+    // shadow rays in packets); which group each pixel sees.
     const auto tb = Clock::now();
-    std::vector<int> groupOf(out.lensMask.size(), -1);
-    std::vector<trace::RayCounts> rowCounts(static_cast<size_t>(h));
-    const raster::PixelRays rays(camera);
-    trace::ParallelRows(h, s.threads, [&](int y) {
-        std::vector<raster::Ray> rowRays(static_cast<size_t>(w));
-        std::vector<trace::Hit> hits(static_cast<size_t>(w));
-        for (int x = 0; x < w; ++x)
-            rowRays[static_cast<size_t>(x)] =
-                rays(static_cast<float>(x) + 0.5f, static_cast<float>(y) + 0.5f);
-        trace::RayCounts& counts = rowCounts[static_cast<size_t>(y)];
-        m.tracer->IntersectCamera(rowRays, hits, counts);
-        for (int x = 0; x < w; ++x) {
-            const size_t p =
-                static_cast<size_t>(y) * static_cast<size_t>(w) + static_cast<size_t>(x);
-            const trace::Hit& hit = hits[static_cast<size_t>(x)];
-            const int g = hit.valid ? m.tracer->GroupOf(hit.object) : -1;
-            if (g >= 0) {
-                groupOf[p] = g;
-                continue;
-            }
-            const glm::vec3 l =
-                m.tracer->HitRadiance(rowRays[static_cast<size_t>(x)], hit,
-                                      m.tracer->options().fullTreeDepth, 1.0, counts);
-            float* px = out.image.At(x, y);
-            px[0] = l.x, px[1] = l.y, px[2] = l.z;
-        }
-    });
-    for (const trace::RayCounts& c : rowCounts) out.stats.backgroundRays += c.Total();
+    trace::FrameResult surroundings =
+        trace::RenderFrame(*m.tracer, camera, 1, trace::Model::Surroundings, s.threads);
+    out.image = std::move(surroundings.image);
+    const std::vector<int>& groupOf = surroundings.lensGroup;
+    out.stats.backgroundRays = surroundings.counts.Total();
     out.stats.backgroundSeconds = Since(tb);
 
     // Step 2: the two nearest viewpoint samples, weighted by the other's distance.
@@ -430,18 +424,23 @@ RenderedFrame Renderer::Render(const raster::Camera& camera, const RenderSetting
     out.stats.sampleWeights = weights;
 
     // Step 3: each lens group seen, from its maps; other groups ray traced.
+    std::vector<std::vector<uint32_t>> pixelsOf(m.set.groups.size());
+    for (size_t p = 0; p < groupOf.size(); ++p)
+        if (groupOf[p] >= 0)
+            pixelsOf[static_cast<size_t>(groupOf[p])].push_back(static_cast<uint32_t>(p));
     for (int g = 0; g < static_cast<int>(m.set.groups.size()); ++g) {
-        if (std::find(groupOf.begin(), groupOf.end(), g) == groupOf.end()) {
+        const std::vector<uint32_t>& pixels = pixelsOf[static_cast<size_t>(g)];
+        if (pixels.empty()) {
             ++out.stats.groupsSkipped;  // hidden or off screen: no vertex rays, no passes
             continue;
         }
-        std::vector<double> acc(static_cast<size_t>(w) * static_cast<size_t>(h) * 3, 0.0);
-        m.DrawGroup(camera, s, g, samples, weights, &acc, &out.stats);
-        for (size_t p = 0; p < groupOf.size(); ++p) {
-            if (groupOf[p] != g) continue;
-            out.lensMask[p] = 1;
+        std::vector<double> acc(pixels.size() * 3, 0.0);
+        m.DrawGroup(camera, s, g, samples, weights, pixels, &acc, &out.stats);
+        for (size_t k = 0; k < pixels.size(); ++k) {
+            out.lensMask[pixels[k]] = 1;
             for (size_t c = 0; c < 3; ++c)
-                out.image.data[3 * p + c] = static_cast<float>(std::min(1.0, acc[3 * p + c]));
+                out.image.data[3 * size_t{pixels[k]} + c] =
+                    static_cast<float>(std::min(1.0, acc[3 * k + c]));
         }
     }
     out.stats.lensSeconds = out.stats.traceSeconds + out.stats.tessSeconds +

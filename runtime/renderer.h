@@ -40,9 +40,12 @@ const char* ToString(Method m);
 
 struct RenderSettings {
     Method method = Method::Hybrid;
-    double t = 5.0;  // hybrid tessellation threshold (subpixels)
-    int spp = 3;     // RayTraced: spp × spp samples per pixel
-    int layers = 0;  // 0: all layers; 1: the outermost only
+    double t = 5.0;     // hybrid tessellation threshold (subpixels)
+    int subpixels = 0;  // t's unit is 1/subpixels pixel; 0: the PEMs' supersampling (the
+                        // traced images' K×K, the hybrid paper's 3×3); the viewer, which
+                        // draws one sample per pixel, uses 1
+    int spp = 3;        // RayTraced: spp × spp samples per pixel
+    int layers = 0;     // 0: all layers; 1: the outermost only
     int threads = 1;
 };
 

@@ -21,7 +21,7 @@ using nlohmann::json;
 struct RenderArgs {
     std::string pemDir, view = "sample:0", size, out, method = "hybrid", stats;
     double t = 5.0;
-    int spp = 3, layers = 0, threads = 1, repeat = 0;
+    int spp = 3, subpixels = 0, layers = 0, threads = 1, repeat = 0;
     float exposure = 1.0f;
     bool quiet = false;
 };
@@ -80,6 +80,9 @@ void AddRenderCommand(CLI::App& app) {
     sub->add_option("--size", a.size, "image size WxH (default: the PEMs')");
     sub->add_option("--method", a.method, "hybrid | pem | static | traced");
     sub->add_option("--t", a.t, "tessellation threshold (subpixels)")->check(CLI::Range(0.25, 1e4));
+    sub->add_option("--subpixels", a.subpixels,
+                    "K: t is in 1/K pixel (default 0: the PEMs' supersampling)")
+        ->check(CLI::Range(0, 16));
     sub->add_option("--spp", a.spp, "K for the ray tracer: K×K samples")->check(CLI::Range(1, 16));
     sub->add_option("--layers", a.layers, "0: all layers, 1: the outermost only")
         ->check(CLI::Range(0, 1));
@@ -108,6 +111,7 @@ int RunRenderCommand() {
     s.method = ParseMethod(a.method);
     s.t = a.t;
     s.spp = a.spp;
+    s.subpixels = a.subpixels;
     s.layers = a.layers;
     s.threads = a.threads;
     runtime::RenderedFrame f = renderer.Render(camera, s);

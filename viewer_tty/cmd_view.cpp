@@ -82,6 +82,7 @@ int RunViewCommand() {
         s.method = MethodOf(st.mode);
         s.t = st.t;
         s.spp = 1;
+        s.subpixels = 1;  // one sample per pixel: t is in pixels of the picture shown
         s.threads = a.threads;
         runtime::RenderedFrame f = renderer.Render(cam, s);
         char info[160];

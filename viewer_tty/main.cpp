@@ -4,6 +4,8 @@
 //                 [--matrix out.mtx] [--rounding rne|d3d] [--cube-lod llvmpipe|exact] [--quiet]
 // Every failure prints one line `pemref: <file>: <cause>` and exits non-zero; outputs are
 // written to temporary files and renamed, so a failed run leaves none behind.
+#include <malloc.h>
+
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <chrono>
@@ -117,6 +119,10 @@ void AddRaster(CLI::App& app, RasterArgs& a) {
 }  // namespace
 
 int main(int argc, char** argv) {
+    // Frames allocate and free buffers of a few MB each (passes, images, meshes): keep them in
+    // the heap rather than mapping and unmapping them every frame (page faults, TLB shootdowns).
+    mallopt(M_MMAP_THRESHOLD, 32 << 20);
+    mallopt(M_TRIM_THRESHOLD, 256 << 20);
     CLI::App app{"pemref — parameterized, layered environment maps, CPU reference"};
     app.require_subcommand(1);
     RasterArgs rasterArgs;
