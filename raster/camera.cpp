@@ -61,16 +61,27 @@ Ray PixelRay(const Camera& camera, float px, float py) {
     return PixelRays(camera)(px, py);
 }
 
-glm::vec2 ProjectToImage(const Camera& camera, const glm::vec3& p, float* depth) {
+ImageProjection::ImageProjection(const Camera& camera)
+    : eye_(camera.eye),
+      width_(static_cast<float>(camera.width)),
+      height_(static_cast<float>(camera.height)),
+      tanHalf_(std::tan(0.5f * camera.fovYRadians)),
+      aspect_(camera.Aspect()) {
     const Basis b = CameraBasis(camera);
-    const glm::vec3 d = p - camera.eye;
-    const float z = glm::dot(d, b.f);  // distance along the view axis
+    s_ = b.s, u_ = b.u, f_ = b.f;
+}
+
+glm::vec2 ImageProjection::operator()(const glm::vec3& p, float* depth) const {
+    const glm::vec3 d = p - eye_;
+    const float z = glm::dot(d, f_);  // distance along the view axis
     if (depth) *depth = z;
-    const float tanHalf = std::tan(0.5f * camera.fovYRadians);
-    const float ndcX = glm::dot(d, b.s) / (z * tanHalf * camera.Aspect());
-    const float ndcY = glm::dot(d, b.u) / (z * tanHalf);
-    return {(ndcX + 1.0f) * 0.5f * static_cast<float>(camera.width),
-            (1.0f - ndcY) * 0.5f * static_cast<float>(camera.height)};
+    const float ndcX = glm::dot(d, s_) / (z * tanHalf_ * aspect_);
+    const float ndcY = glm::dot(d, u_) / (z * tanHalf_);
+    return {(ndcX + 1.0f) * 0.5f * width_, (1.0f - ndcY) * 0.5f * height_};
+}
+
+glm::vec2 ProjectToImage(const Camera& camera, const glm::vec3& p, float* depth) {
+    return ImageProjection(camera)(p, depth);
 }
 
 }  // namespace pem::raster

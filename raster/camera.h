@@ -68,4 +68,16 @@ class PixelRays {
 // PixelRay for points in front of the camera. `depth` receives the distance along the view axis.
 glm::vec2 ProjectToImage(const Camera& camera, const glm::vec3& p, float* depth = nullptr);
 
+// ProjectToImage for many points of one camera: the per-camera terms computed once; the same
+// bits (ProjectToImage is implemented with it).
+class ImageProjection {
+  public:
+    explicit ImageProjection(const Camera& camera);
+    glm::vec2 operator()(const glm::vec3& p, float* depth = nullptr) const;
+
+  private:
+    glm::vec3 eye_, s_, u_, f_;
+    float width_, height_, tanHalf_, aspect_;
+};
+
 }  // namespace pem::raster

@@ -522,9 +522,9 @@ TessellationResult Tessellate(const TessInput& input, const TessOptions& options
 
 ProjectFn CameraProjection(const raster::Camera& camera, int supersampling) {
     const float scale = static_cast<float>(supersampling);
-    return [camera, scale](const glm::vec3& position) {
+    return [projection = raster::ImageProjection(camera), scale](const glm::vec3& position) {
         float depth = 0.0f;
-        const glm::vec2 image = raster::ProjectToImage(camera, position, &depth);
+        const glm::vec2 image = projection(position, &depth);
         if (!(depth > 0.0f)) return glm::vec2(std::numeric_limits<float>::quiet_NaN());
         return image * scale;
     };
