@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <barrier>
 #include <cmath>
+#include <cstring>
 #include <stdexcept>
 
 #include "raster/blend.h"
@@ -148,10 +149,15 @@ void DrawPass(const std::vector<PassDraw>& draws, std::vector<std::vector<Triang
     });
 }
 
-// Whether two passes of equally sized frames give the same triangle setups.
+// Whether two passes of equally sized frames give the same triangle setups: bitwise equal
+// vertices (Vertex is 14 floats, no padding) and indices.
 bool SameGeometry(const Frame& fa, const Pass& a, const Frame& fb, const Pass& b) {
+    static_assert(sizeof(Vertex) == 14 * sizeof(float));
     return fa.width == fb.width && fa.height == fb.height && fa.depthClamp == fb.depthClamp &&
-           a.numUnits == b.numUnits && a.indices == b.indices && a.vertices == b.vertices;
+           a.numUnits == b.numUnits && a.indices == b.indices &&
+           a.vertices.size() == b.vertices.size() &&
+           std::memcmp(a.vertices.data(), b.vertices.data(), a.vertices.size() * sizeof(Vertex)) ==
+               0;
 }
 
 // Draws every frame's passes, each framebuffer's in order; pass p of several frames with the

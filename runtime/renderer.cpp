@@ -287,15 +287,17 @@ void Renderer::Impl::DrawGroup(const raster::Camera& camera, const RenderSetting
     auto addFrame = [&](std::vector<const raster::Texture*> maps,
                         const std::vector<std::vector<glm::vec3>>& coords,
                         const std::vector<ExitRay>& exits, double weight,
-                        const std::vector<const PassGeometry*>& geometries) {
+                        const std::vector<const PassGeometry*>& geometries, int sameAs = -1) {
         const auto tt = Clock::now();
         raster::Frame& frame = frames.emplace_back();
+        // sameAs >= 0: that frame drew the same passes with another sample's maps (copied).
+        if (sameAs >= 0) frame.passes = frames[static_cast<size_t>(sameAs)].passes;
         auto& frameReady = ready.emplace_back();
         frameWeights.push_back(weight);
         frame.width = camera.width;
         frame.height = camera.height;
         frame.depthClamp = true;
-        frame.passes.resize(maps.size());
+        frame.passes.resize(maps.size());  // no-op when copied
         for (size_t k = maps.size(); k-- > 0;) {
             const size_t slot = maps.size() - 1 - k;
             PassOptions po;
@@ -307,7 +309,8 @@ void Renderer::Impl::DrawGroup(const raster::Camera& camera, const RenderSetting
             if (it == prepared.end())
                 it = prepared.emplace(maps[k], raster::PrepareTexture(*maps[k])).first;
             frameReady.push_back(it->second);
-            FillLayerPass(*geometries[k], coords[k], exits, po, &frame.passes[slot]);
+            if (sameAs < 0)
+                FillLayerPass(*geometries[k], coords[k], exits, po, &frame.passes[slot]);
         }
         stats->texgenSeconds += Since(tt);
     };
@@ -365,6 +368,7 @@ void Renderer::Impl::DrawGroup(const raster::Camera& camera, const RenderSetting
         for (const LayerUse& u : uses)
             coords[term].push_back(ShellCoords(termExits[term], *u.shell, g.emOrigin, s.threads));
     stats->texgenSeconds += Since(tc);
+    int firstFrameOf[2] = {-1, -1};  // per term: the first sample's frame
     for (size_t k = 0; k < samples.size(); ++k) {
         for (int term = 0; term < (g.glass ? 2 : 1); ++term) {
             std::vector<const raster::Texture*> maps;
@@ -373,7 +377,9 @@ void Renderer::Impl::DrawGroup(const raster::Camera& camera, const RenderSetting
                 throw InputError(set.dir, "missing maps for viewpoint sample " +
                                               std::to_string(samples[k]) + ", group " +
                                               std::to_string(group));
-            addFrame(maps, coords[term], termExits[term], weights[k], useGeometry);
+            const int sameAs = firstFrameOf[term];
+            if (sameAs < 0) firstFrameOf[term] = static_cast<int>(frames.size());
+            addFrame(maps, coords[term], termExits[term], weights[k], useGeometry, sameAs);
         }
     }
     drawFrames();
