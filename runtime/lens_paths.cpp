@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cmath>
+#include <optional>
 
 #include "trace/segment.h"
 
@@ -17,10 +19,11 @@ double Since(Clock::time_point t0) {
     return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
-// The vertex's paths from the eye's ray through it.
+// The vertex's paths from the eye's ray through it; `surface` (optional): the vertex's surface
+// hit, known without a ray.
 trace::VertexPaths VertexRay(const trace::Tracer& tracer, const trace::EmbreeScene& embree,
                              const glm::vec3& eye, int group, const glm::vec3& position,
-                             trace::RayCounts& counts) {
+                             const std::optional<trace::Hit>& surface, trace::RayCounts& counts) {
     const glm::vec3 d = position - eye;
     const float dist = glm::length(d);
     trace::VertexPaths none;
@@ -28,14 +31,61 @@ trace::VertexPaths VertexRay(const trace::Tracer& tracer, const trace::EmbreeSce
     if (!(dist > 0.0f)) return none;
     const raster::Ray ray{eye, d / dist};
     // Step 1: the surface at the vertex (hidden vertices too), else the group's first hit.
-    ++counts.primary;
-    trace::Hit hit = embree.Intersect(ray, 0.999f * dist);
-    if (!hit.valid || tracer.GroupOf(hit.object) != group)
-        hit = trace::IncomingHit(tracer, ray, group, counts);
-    if (!hit.valid) return none;
+    trace::Hit hit;
+    if (surface) {
+        hit = *surface;
+        hit.t = dist;
+    } else {
+        ++counts.primary;
+        hit = embree.Intersect(ray, 0.999f * dist);
+        if (!hit.valid || tracer.GroupOf(hit.object) != group)
+            hit = trace::IncomingHit(tracer, ray, group, counts);
+        if (!hit.valid) return none;
+    }
     // Step 2: the two greedy paths from it.
     const std::optional<trace::GreedyPaths> paths = tracer.GreedyPathsAt(ray, hit, group, counts);
     return paths ? *paths : none;
+}
+
+// Per input vertex, the triangles using it (CSR, in mesh order).
+struct VertexTriangles {
+    std::vector<uint32_t> start, tri;
+    explicit VertexTriangles(const LensMesh& mesh) : start(mesh.positions.size() + 1, 0) {
+        for (const glm::uvec3& t : mesh.triangles)
+            for (int k = 0; k < 3; ++k) ++start[t[k] + 1];
+        for (size_t v = 0; v < mesh.positions.size(); ++v) start[v + 1] += start[v];
+        tri.resize(start.back());
+        std::vector<uint32_t> fill(start.begin(), start.end() - 1);
+        for (uint32_t i = 0; i < mesh.triangles.size(); ++i)
+            for (int k = 0; k < 3; ++k) tri[fill[mesh.triangles[i][k]]++] = i;
+    }
+};
+
+// Input vertex v's surface seen from the eye: the first triangle using it whose geometric normal
+// (unit, along (p1 − p0) × (p2 − p0), as Embree reports it) faces the eye, at v's corner.
+std::optional<trace::Hit> InputSurface(const LensMesh& mesh, const VertexTriangles& vt, size_t v,
+                                       const glm::vec3& eye) {
+    const glm::vec3 dir = mesh.positions[v] - eye;
+    for (uint32_t k = vt.start[v]; k < vt.start[v + 1]; ++k) {
+        const uint32_t i = vt.tri[k];
+        const glm::uvec3 t = mesh.triangles[i];
+        const glm::vec3 p0 = mesh.positions[t.x], p1 = mesh.positions[t.y],
+                        p2 = mesh.positions[t.z];
+        const glm::vec3 n = glm::cross(p1 - p0, p2 - p0);
+        const float len = glm::length(n);
+        if (!(len > 0.0f) || !std::isfinite(len)) continue;
+        const glm::vec3 ng = n / len;
+        if (!(glm::dot(dir, ng) < 0.0f)) continue;
+        trace::Hit hit;
+        hit.object = mesh.source[i].x;
+        hit.prim = mesh.source[i].y;
+        hit.u = t.y == v ? 1.0f : 0.0f;
+        hit.v = t.z == v ? 1.0f : 0.0f;
+        hit.ng = ng;
+        hit.valid = true;
+        return hit;
+    }
+    return std::nullopt;
 }
 
 }  // namespace
@@ -47,7 +97,10 @@ LensMesh GroupMesh(const trace::Scene& scene, int group) {
         const auto base = static_cast<uint32_t>(mesh.positions.size());
         mesh.positions.insert(mesh.positions.end(), obj.positions.begin(), obj.positions.end());
         mesh.normals.insert(mesh.normals.end(), obj.normals.begin(), obj.normals.end());
-        for (const glm::uvec3& t : obj.triangles) mesh.triangles.push_back(t + glm::uvec3(base));
+        for (size_t i = 0; i < obj.triangles.size(); ++i) {
+            mesh.triangles.push_back(obj.triangles[i] + glm::uvec3(base));
+            mesh.source.emplace_back(o, static_cast<int>(i));
+        }
     }
     return mesh;
 }
@@ -68,16 +121,21 @@ LensPaths TraceLensPaths(const trace::Tracer& tracer, const trace::EmbreeScene& 
     in.triangles = mesh.triangles;
     in.project = trace::CameraProjection(camera, options.supersampling);
     in.backFacing = backFacing;
-    in.evaluate = [&](const glm::vec3& p, const glm::vec3&) {
+    const VertexTriangles vertexTriangles(mesh);
+    auto evaluate = [&](const glm::vec3& p, const std::optional<trace::Hit>& surface) {
         const auto ts = Clock::now();
         trace::RayCounts counts;
-        trace::VertexPaths paths = VertexRay(tracer, embree, camera.eye, group, p, counts);
+        trace::VertexPaths paths = VertexRay(tracer, embree, camera.eye, group, p, surface, counts);
         traceNs += static_cast<uint64_t>(
             std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - ts).count());
         primary += counts.primary;
         secondary += counts.secondary;
         shadow += counts.shadow;
         return paths;
+    };
+    in.evaluate = [&](const glm::vec3& p, const glm::vec3&) { return evaluate(p, std::nullopt); };
+    in.evaluateInput = [&](size_t v) {
+        return evaluate(mesh.positions[v], InputSurface(mesh, vertexTriangles, v, camera.eye));
     };
     trace::TessOptions tess = options.tess;
     if (!options.adaptive) tess.maxDepth = 0;

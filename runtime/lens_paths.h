@@ -6,11 +6,14 @@
 //   LensPaths lp = TraceLensPaths(tracer, embree, camera, group, {});
 //   // lp.tess.positions / normals / triangles / paths: the refined mesh and each vertex's paths
 //
-// Vertex rays: the ray from the eye to the vertex, intersected from just before the vertex
-// (tnear = 0.999 · distance), so a vertex hidden behind another part of the object still gets
-// its own surface; when that misses the group (a silhouette vertex grazed by float error), the
-// group's first hit along the ray is used (segment.h IncomingHit). From that hit the two greedy
-// paths (Tracer::GreedyPathsAt). A vertex with no group hit gets paths with F = 0.
+// Vertex rays: the ray from the eye to the vertex starts at the vertex's own surface, so a vertex
+// hidden behind another part of the object still gets it. For a vertex of the input mesh that
+// surface is known without a ray: the first triangle using the vertex (in mesh order) that faces
+// the eye, at its corner. Other vertices (midpoints, or no such triangle) intersect the ray from
+// just before the vertex (tnear = 0.999 · distance); when that misses the group (a silhouette
+// vertex grazed by float error), the group's first hit along the ray is used (segment.h
+// IncomingHit). From that hit the two greedy paths (Tracer::GreedyPathsAt). A vertex with no
+// group hit gets paths with F = 0.
 // Parallelism: the tessellation runs on `threads` threads (trace/tessellate.h: the input vertices
 // in chunks, then runs of input triangles merged in index order); the result is the same for any
 // thread count (the ray counts may include a few midpoints traced by two runs).
@@ -32,6 +35,7 @@ struct LensMesh {
     std::vector<glm::vec3> positions;
     std::vector<glm::vec3> normals;
     std::vector<glm::uvec3> triangles;
+    std::vector<glm::ivec2> source;  // per triangle: (object, its index in the object)
 };
 LensMesh GroupMesh(const trace::Scene& scene, int group);
 

@@ -388,7 +388,10 @@ void Tessellator::TraceInputVertices() {
     const size_t chunks = (n + kChunk - 1) / kChunk;
     ParallelRows(static_cast<int>(chunks), threads_, [&](int c) {
         for (size_t v = static_cast<size_t>(c) * kChunk; v < std::min(n, (c + 1) * kChunk); ++v)
-            if (wanted[v]) shared_.paths[v] = in_.evaluate(in_.positions[v], in_.normals[v]);
+            if (wanted[v])
+                shared_.paths[v] = in_.evaluateInput
+                                       ? in_.evaluateInput(v)
+                                       : in_.evaluate(in_.positions[v], in_.normals[v]);
     });
 }
 

@@ -50,6 +50,9 @@ struct TriangleGeometry {
 using ProjectFn = std::function<glm::vec2(const glm::vec3& position)>;
 // Traces the primary ray through a vertex (called once per traced vertex).
 using EvaluateFn = std::function<VertexPaths(const glm::vec3& position, const glm::vec3& normal)>;
+// Traces input vertex `index` (its position and normal are the input's): lets the caller use
+// what it knows of the input mesh (e.g. the surface point without a primary ray).
+using EvaluateInputFn = std::function<VertexPaths(size_t index)>;
 using BackFacingFn = std::function<bool(const TriangleGeometry& triangle)>;
 using OccludedFn = std::function<bool(const glm::vec3& position)>;
 
@@ -59,6 +62,7 @@ struct TessInput {
     std::vector<glm::uvec3> triangles;  // indices into positions
     ProjectFn project;                  // required
     EvaluateFn evaluate;                // required
+    EvaluateInputFn evaluateInput;      // optional: input vertices (else evaluate)
     BackFacingFn backFacing;            // optional: empty = every triangle front-facing
     OccludedFn occluded;                // optional: empty = every vertex visible
 };
