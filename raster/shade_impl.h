@@ -128,8 +128,9 @@ void ShadeGroup(const FragmentTarget& tg, const Pass& pass, const LaneAttribs& q
 // draw (draws share the pass geometry: the same coverage and attributes; each samples its own
 // textures and writes its own target). A group is shaded when at least one of its pixels is
 // covered (llvmpipe skips empty 8-lane vectors).
+// `footprints`: the caller's scratch (reset per lane group).
 void DrawTriangle(const PassDraw* draws, int numDraws, const TriangleSetup& t, int worker,
-                  int workers) {
+                  int workers, std::array<FastFootprints, kMaxUnits>* footprints) {
     // A triangle in fewer bands than there are workers may lie in none of this worker's.
     const int band0 = (t.y0 & ~1) / 2 / kBandQuadRows, band1 = t.y1 / 2 / kBandQuadRows;
     if (band1 - band0 + 1 < workers) {
@@ -144,7 +145,6 @@ void DrawTriangle(const PassDraw* draws, int numDraws, const TriangleSetup& t, i
             laneOffset[e][l] = -t.edge[e].dcdx * kLaneDx[l] + t.edge[e].dcdy * kLaneDy[l];
     const int gy0 = t.y0 & ~1, gx0 = t.x0 & ~3;
     LaneAttribs qa;
-    std::array<FastFootprints, kMaxUnits> footprints;
     for (int gy = gy0; gy <= t.y1; gy += 2) {
         if ((gy / 2 / kBandQuadRows) % workers != worker) continue;
         unsigned rowMask = 0;  // lanes whose row lies inside the bounding box
@@ -165,17 +165,18 @@ void DrawTriangle(const PassDraw* draws, int numDraws, const TriangleSetup& t, i
             }
             if (!mask) continue;
             InterpolateLanes(t, gx, gy, &qa);
-            for (FastFootprints& f : footprints) f.shape = nullptr;  // new coordinates
+            for (FastFootprints& f : *footprints) f.shape = nullptr;  // new coordinates
             for (int d = 0; d < numDraws; ++d)
-                ShadeGroup(*draws[d].first, *draws[d].second, qa, gx, gy, mask, &footprints);
+                ShadeGroup(*draws[d].first, *draws[d].second, qa, gx, gy, mask, footprints);
         }
     }
 }
 
 void DrawBands(const std::vector<PassDraw>& draws, const std::vector<TriangleSetup>& triangles,
                int worker, int workers) {
+    std::array<FastFootprints, kMaxUnits> footprints;
     for (const TriangleSetup& t : triangles)
-        DrawTriangle(draws.data(), static_cast<int>(draws.size()), t, worker, workers);
+        DrawTriangle(draws.data(), static_cast<int>(draws.size()), t, worker, workers, &footprints);
 }
 
 }  // namespace
