@@ -9,20 +9,17 @@
 
 namespace pem::raster {
 
-namespace {
-
 // The orthonormal camera frame of glm::lookAt: s (right), u (up), f (forward).
-struct Basis {
-    glm::vec3 s, u, f;
-};
-
-Basis CameraBasis(const Camera& c) {
-    const glm::vec3 f = glm::normalize(c.target - c.eye);
-    const glm::vec3 s = glm::normalize(glm::cross(f, c.up));
-    return {s, glm::cross(s, f), f};
+CameraTerms::CameraTerms(const Camera& c)
+    : eye(c.eye),
+      f(glm::normalize(c.target - c.eye)),
+      width(static_cast<float>(c.width)),
+      height(static_cast<float>(c.height)),
+      tanHalf(std::tan(0.5f * c.fovYRadians)),
+      aspect(c.Aspect()) {
+    s = glm::normalize(glm::cross(f, c.up));
+    u = glm::cross(s, f);
 }
-
-}  // namespace
 
 glm::mat4 ViewMatrix(const Camera& camera) {
     return glm::lookAt(camera.eye, camera.target, camera.up);
@@ -36,48 +33,28 @@ glm::mat4 ViewProjection(const Camera& camera, float zNear, float zFar) {
     return ProjectionMatrix(camera, zNear, zFar) * ViewMatrix(camera);
 }
 
-PixelRays::PixelRays(const Camera& camera)
-    : eye_(camera.eye),
-      width_(static_cast<float>(camera.width)),
-      height_(static_cast<float>(camera.height)),
-      tanHalf_(std::tan(0.5f * camera.fovYRadians)),
-      aspect_(camera.Aspect()) {
-    const Basis b = CameraBasis(camera);
-    s_ = b.s, u_ = b.u, f_ = b.f;
-}
-
 Ray PixelRays::operator()(float px, float py) const {
     // Step 1: image point → NDC (y flips: row 0 is the top, NDC +1).
-    const float ndcX = 2.0f * px / width_ - 1.0f;
-    const float ndcY = 1.0f - 2.0f * py / height_;
+    const float ndcX = 2.0f * px / c_.width - 1.0f;
+    const float ndcY = 1.0f - 2.0f * py / c_.height;
     // Step 2: NDC → camera-space direction on the plane z = -1.
-    const float x = ndcX * tanHalf_ * aspect_;
-    const float y = ndcY * tanHalf_;
+    const float x = ndcX * c_.tanHalf * c_.aspect;
+    const float y = ndcY * c_.tanHalf;
     // Step 3: camera → world with the lookAt basis.
-    return {eye_, glm::normalize(x * s_ + y * u_ + f_)};
+    return {c_.eye, glm::normalize(x * c_.s + y * c_.u + c_.f)};
 }
 
 Ray PixelRay(const Camera& camera, float px, float py) {
     return PixelRays(camera)(px, py);
 }
 
-ImageProjection::ImageProjection(const Camera& camera)
-    : eye_(camera.eye),
-      width_(static_cast<float>(camera.width)),
-      height_(static_cast<float>(camera.height)),
-      tanHalf_(std::tan(0.5f * camera.fovYRadians)),
-      aspect_(camera.Aspect()) {
-    const Basis b = CameraBasis(camera);
-    s_ = b.s, u_ = b.u, f_ = b.f;
-}
-
 glm::vec2 ImageProjection::operator()(const glm::vec3& p, float* depth) const {
-    const glm::vec3 d = p - eye_;
-    const float z = glm::dot(d, f_);  // distance along the view axis
+    const glm::vec3 d = p - c_.eye;
+    const float z = glm::dot(d, c_.f);  // distance along the view axis
     if (depth) *depth = z;
-    const float ndcX = glm::dot(d, s_) / (z * tanHalf_ * aspect_);
-    const float ndcY = glm::dot(d, u_) / (z * tanHalf_);
-    return {(ndcX + 1.0f) * 0.5f * width_, (1.0f - ndcY) * 0.5f * height_};
+    const float ndcX = glm::dot(d, c_.s) / (z * c_.tanHalf * c_.aspect);
+    const float ndcY = glm::dot(d, c_.u) / (z * c_.tanHalf);
+    return {(ndcX + 1.0f) * 0.5f * c_.width, (1.0f - ndcY) * 0.5f * c_.height};
 }
 
 glm::vec2 ProjectToImage(const Camera& camera, const glm::vec3& p, float* depth) {

@@ -51,17 +51,23 @@ glm::mat4 ViewProjection(const Camera& camera, float zNear, float zFar);
 // centres at +0.5). dir is unit length.
 Ray PixelRay(const Camera& camera, float px, float py);
 
-// PixelRay for many image points of one camera: the per-camera terms (the lookAt basis,
-// tan(fovY/2), the aspect) are computed once; operator() returns exactly PixelRay's ray (same
-// bits: PixelRay is implemented with it).
+// The per-camera terms of PixelRay and ProjectToImage: the lookAt basis (s right, u up, f
+// forward), tan(fovY/2), the aspect and the image size.
+struct CameraTerms {
+    explicit CameraTerms(const Camera& camera);
+    glm::vec3 eye, s, u, f;
+    float width, height, tanHalf, aspect;
+};
+
+// PixelRay for many image points of one camera: the per-camera terms computed once;
+// operator() returns exactly PixelRay's ray (same bits: PixelRay is implemented with it).
 class PixelRays {
   public:
-    explicit PixelRays(const Camera& camera);
+    explicit PixelRays(const Camera& camera) : c_(camera) {}
     Ray operator()(float px, float py) const;
 
   private:
-    glm::vec3 eye_, s_, u_, f_;
-    float width_, height_, tanHalf_, aspect_;
+    CameraTerms c_;
 };
 
 // The continuous image point (rows top-down) where a world point projects; the inverse of
@@ -72,12 +78,11 @@ glm::vec2 ProjectToImage(const Camera& camera, const glm::vec3& p, float* depth 
 // bits (ProjectToImage is implemented with it).
 class ImageProjection {
   public:
-    explicit ImageProjection(const Camera& camera);
+    explicit ImageProjection(const Camera& camera) : c_(camera) {}
     glm::vec2 operator()(const glm::vec3& p, float* depth = nullptr) const;
 
   private:
-    glm::vec3 eye_, s_, u_, f_;
-    float width_, height_, tanHalf_, aspect_;
+    CameraTerms c_;
 };
 
 }  // namespace pem::raster

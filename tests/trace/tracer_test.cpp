@@ -48,6 +48,17 @@ fs::path FreshDir(const std::string& name) {
     return dir;
 }
 
+// A scene with its Embree BVH and tracer (2 threads, the pinned ISA).
+struct TracedScene {
+    explicit TracedScene(const std::string& file) : scene(LoadScene(file)) {}
+    TracedScene(const TracedScene&) = delete;  // the tracer refers to the members
+    TracedScene& operator=(const TracedScene&) = delete;
+    Scene scene;
+    EmbreeDevice device{{2, "auto"}};
+    EmbreeScene embree{device, scene};
+    Tracer tracer{scene, embree};
+};
+
 // RenderFrame traces rows in steps (camera rays and shadow rays in 8-ray packets, full-tree
 // leaves shaded after the tree); the single-ray path (Tracer::Radiance / GreedyRadiance per
 // sample, rtcIntersect1 / rtcOccluded1) must give the same float bits.
@@ -90,10 +101,8 @@ TEST(Tracer, RenderFrameEqualsTheSingleRayPathBitForBit) {
 // every pixel whose camera ray misses the lens groups, black at the others, and the group of
 // each pixel as a single camera ray sees it.
 TEST(Tracer, SurroundingsAreTheFullTreeOffTheLenses) {
-    const Scene scene = LoadScene(kHybrid);
-    const EmbreeDevice device({2, "auto"});
-    const EmbreeScene embree(device, scene);
-    const Tracer tracer(scene, embree);
+    const TracedScene traced(kHybrid);
+    const auto& [scene, device, embree, tracer] = traced;
     const raster::Camera cam = CameraForSize(*scene.camera, 64, 48);
     const FrameResult frame = RenderFrame(tracer, cam, 1, Model::Surroundings, 2);
     ASSERT_EQ(frame.lensGroup.size(), static_cast<size_t>(cam.width * cam.height));
@@ -177,10 +186,8 @@ double MeanAbsDiff(const FloatImage& a, const FloatImage& b, const FloatImage& m
 }
 
 TEST(Tracer, HybridReferenceIsFiniteLitAndShowsTheGlass) {
-    const Scene scene = LoadScene(kHybrid);
-    const EmbreeDevice device({2, "auto"});
-    const EmbreeScene embree(device, scene);
-    const Tracer tracer(scene, embree);
+    const TracedScene traced(kHybrid);
+    const auto& [scene, device, embree, tracer] = traced;
     const raster::Camera cam = CameraForSize(*scene.camera, 80, 60);
     const FrameResult ref = RenderFrame(tracer, cam, 2, Model::FullTree, 2);
     double mean = 0.0;
@@ -224,10 +231,8 @@ void ExpectInRange(const FloatImage& img, int channel, float lo, float hi, const
 }
 
 TEST(Tracer, SegmentedImagesAndLayerAlphaInRange) {
-    const Scene scene = LoadScene(kHybrid);
-    const EmbreeDevice device({2, "auto"});
-    const EmbreeScene embree(device, scene);
-    const Tracer tracer(scene, embree);
+    const TracedScene traced(kHybrid);
+    const auto& [scene, device, embree, tracer] = traced;
     const raster::Camera cam = CameraForSize(*scene.camera, 64, 48);
     for (int g = 0; g < static_cast<int>(scene.lensGroups.size()); ++g) {
         const glm::vec3 origin = GroupEmOrigin(scene, g);
