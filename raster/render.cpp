@@ -7,7 +7,6 @@
 #include "raster/render.h"
 
 #include <algorithm>
-#include <barrier>
 #include <cmath>
 #include <cstring>
 #include <stdexcept>
@@ -128,12 +127,12 @@ void DrawPass(const std::vector<PassDraw>& draws, std::vector<std::vector<Triang
     pv->state.assign(nv, pass.indices.empty() ? VertexState::Inside : VertexState::Unused);
     for (uint32_t i : pass.indices) pv->state[i] = VertexState::Inside;
     pv->window.resize(nv);
-    std::barrier sync(workers);
+    SpinBarrier sync(workers);
     RunWorkers(workers, ftz, [&](int w) {
         // Step 2: vertex processing in contiguous ranges.
         TransformVertices(frame, pass, nv * static_cast<size_t>(w) / workers,
                           nv * static_cast<size_t>(w + 1) / workers, pv);
-        sync.arrive_and_wait();
+        sync.ArriveAndWait();
         // Step 3: per batch, setup in contiguous chunks of triangles, then fragments by row bands
         // over the chunks in primitive order.
         std::vector<TriangleSetup>& mine = (*chunks)[static_cast<size_t>(w)];
@@ -142,9 +141,9 @@ void DrawPass(const std::vector<PassDraw>& draws, std::vector<std::vector<Triang
             mine.clear();
             SetupTriangles(frame, pass, *pv, b0 + nb * w / workers, b0 + nb * (w + 1) / workers,
                            &mine);
-            sync.arrive_and_wait();
+            sync.ArriveAndWait();
             for (const std::vector<TriangleSetup>& c : *chunks) drawBands(draws, c, w, workers);
-            sync.arrive_and_wait();
+            sync.ArriveAndWait();
         }
     });
 }

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <condition_variable>
 #include <exception>
 #include <mutex>
@@ -12,6 +13,12 @@
 
 namespace pem::raster {
 namespace {
+
+void CpuRelax() {
+#if defined(__x86_64__) || defined(__i386__)
+    __builtin_ia32_pause();
+#endif
+}
 
 // Helpers wait for a new generation, run the job as their worker number, and report back.
 class Pool {
@@ -28,13 +35,14 @@ class Pool {
         errors_ = errors;
         helpers_ = helpers;
         pending_ = helpers;
-        ++generation_;
+        generation_.fetch_add(1);
         lock.unlock();
         wake_.notify_all();
     }
     void Wait() {
+        SpinUntil([this] { return pending_.load() == 0; });
         std::unique_lock<std::mutex> lock(mutex_);
-        done_.wait(lock, [this] { return pending_ == 0; });
+        done_.wait(lock, [this] { return pending_.load() == 0; });
         job_ = nullptr;
     }
     // Claims the helpers for one call; false while another call has them.
@@ -45,9 +53,10 @@ class Pool {
     void Loop(int id) {
         uint64_t seen = 0;
         for (;;) {
+            SpinUntil([&] { return generation_.load() != seen; });
             std::unique_lock<std::mutex> lock(mutex_);
-            wake_.wait(lock, [&] { return generation_ != seen; });
-            seen = generation_;
+            wake_.wait(lock, [&] { return generation_.load() != seen; });
+            seen = generation_.load();
             if (id > helpers_) continue;  // this call needs fewer helpers
             const std::function<void(int)>* job = job_;
             std::vector<std::exception_ptr>* errors = errors_;
@@ -58,7 +67,7 @@ class Pool {
                 (*errors)[static_cast<size_t>(id)] = std::current_exception();
             }
             lock.lock();
-            if (--pending_ == 0) done_.notify_one();
+            if (pending_.fetch_sub(1) == 1) done_.notify_one();
         }
     }
 
@@ -68,8 +77,9 @@ class Pool {
     std::vector<std::thread> threads_;  // never joined: they wait until the process ends
     const std::function<void(int)>* job_ = nullptr;
     std::vector<std::exception_ptr>* errors_ = nullptr;
-    uint64_t generation_ = 0;
-    int helpers_ = 0, pending_ = 0;
+    std::atomic<uint64_t> generation_{0};  // written under mutex_, also read spinning
+    std::atomic<int> pending_{0};          // written under mutex_, also read spinning
+    int helpers_ = 0;
 };
 
 Pool& ThePool() {
@@ -78,6 +88,33 @@ Pool& ThePool() {
 }
 
 }  // namespace
+
+bool SpinUntil(const std::function<bool()>& done) {
+    using Clock = std::chrono::steady_clock;
+    const Clock::time_point until = Clock::now() + std::chrono::microseconds(kSpinMicros);
+    for (;;) {
+        for (int i = 0; i < 64; ++i) {
+            if (done()) return true;
+            CpuRelax();
+        }
+        if (Clock::now() > until) return done();
+    }
+}
+
+void SpinBarrier::ArriveAndWait() {
+    const uint32_t gen = generation_.load(std::memory_order_acquire);
+    if (arrived_.fetch_add(1, std::memory_order_acq_rel) + 1 == count_) {
+        // The last to arrive resets the count before it releases the others (they arrive again
+        // only after they see the new generation).
+        arrived_.store(0, std::memory_order_relaxed);
+        generation_.fetch_add(1, std::memory_order_release);
+        generation_.notify_all();
+        return;
+    }
+    if (SpinUntil([&] { return generation_.load(std::memory_order_acquire) != gen; })) return;
+    while (generation_.load(std::memory_order_acquire) == gen)
+        generation_.wait(gen, std::memory_order_acquire);
+}
 
 void RunOnWorkers(int workers, const std::function<void(int worker)>& fn) {
     std::vector<std::exception_ptr> errors(static_cast<size_t>(std::max(1, workers)));

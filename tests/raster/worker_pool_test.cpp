@@ -1,13 +1,16 @@
 // SPDX-License-Identifier: MIT
 // worker_pool_test.cpp — RunOnWorkers: every worker runs exactly once and all at the same time
 // (a barrier of all of them completes), calls in a row reuse the helpers, nested and concurrent
-// calls still run, and exceptions reach the caller.
+// calls still run, and exceptions reach the caller. SpinBarrier: no thread passes a phase before
+// every thread has finished the previous one, with short phases (spinning) and long ones
+// (sleeping).
 #include "raster/worker_pool.h"
 
 #include <gtest/gtest.h>
 
 #include <atomic>
 #include <barrier>
+#include <chrono>
 #include <stdexcept>
 #include <thread>
 #include <vector>
@@ -44,6 +47,25 @@ TEST(WorkerPool, NestedAndConcurrentCalls) {
     for (int k = 0; k < 50; ++k) RunOnWorkers(2, [&](int) { ++count; });
     other.join();
     EXPECT_EQ(count.load(), 200);
+}
+
+TEST(WorkerPool, SpinBarrierSeparatesPhases) {
+    constexpr int kWorkers = 3, kPhases = 400;
+    SpinBarrier sync(kWorkers);
+    std::vector<std::atomic<int>> done(kPhases);
+    std::atomic<int> early{0};
+    RunOnWorkers(kWorkers, [&](int w) {
+        for (int p = 0; p < kPhases; ++p) {
+            // Every 50th phase, one worker is slow for longer than the spin: the others sleep.
+            if (p % 50 == 0 && w == p / 50 % kWorkers)
+                std::this_thread::sleep_for(std::chrono::microseconds(3 * kSpinMicros));
+            ++done[static_cast<size_t>(p)];
+            sync.ArriveAndWait();
+            if (done[static_cast<size_t>(p)].load() != kWorkers) ++early;
+        }
+    });
+    EXPECT_EQ(early.load(), 0);
+    for (int p = 0; p < kPhases; ++p) EXPECT_EQ(done[static_cast<size_t>(p)].load(), kWorkers);
 }
 
 TEST(WorkerPool, ExceptionsReachTheCaller) {
