@@ -155,6 +155,7 @@ int RunRenderCommand() {
             {"samples", st.samples},
             {"sample_weights", st.sampleWeights},
             {"vertex_rays", st.vertexRays},
+            {"traced_vertices", st.tracedVertices},
             {"triangles_in", st.trianglesIn},
             {"triangles_after_tessellation", st.trianglesOut},
             {"ray_tracing_seconds", st.traceSeconds},
