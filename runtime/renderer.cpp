@@ -256,13 +256,13 @@ void Renderer::Impl::DrawGroup(const raster::Camera& camera, const RenderSetting
         mesh = MeshOf(lp.tess);
         const auto t0 = Clock::now();
         for (int term = 0; term < (g.glass ? 2 : 1); ++term)
-            termExits[term] = TermExits(lp.tess.paths, term);
+            termExits[term] = TermExits(lp.tess.paths, term, s.threads);
         stats->texgenSeconds += Since(t0);
     }
     const auto t1 = Clock::now();
-    const std::vector<uint32_t> order = DrawOrder(mesh, camera);
+    const std::vector<uint32_t> order = DrawOrder(mesh, camera, s.threads);
     const glm::mat4 viewProjection = PassViewProjection(mesh, camera);
-    const PassGeometry geometry = MakePassGeometry(mesh, order, viewProjection);
+    const PassGeometry geometry = MakePassGeometry(mesh, order, viewProjection, s.threads);
     // PEM split: polygons on the reflector's convex hull cannot see it, so the local layer is
     // drawn on the other polygons only (PEM §4); the distant layer on all of them.
     PassGeometry localGeometry;
@@ -272,7 +272,7 @@ void Renderer::Impl::DrawGroup(const raster::Camera& camera, const RenderSetting
         std::vector<uint32_t> inner;
         for (uint32_t t : order)
             if (!it->second[t]) inner.push_back(t);
-        localGeometry = MakePassGeometry(mesh, inner, viewProjection);
+        localGeometry = MakePassGeometry(mesh, inner, viewProjection, s.threads);
     }
     stats->texgenSeconds += Since(t1);
 
@@ -310,7 +310,7 @@ void Renderer::Impl::DrawGroup(const raster::Camera& camera, const RenderSetting
                 it = prepared.emplace(maps[k], raster::PrepareTexture(*maps[k])).first;
             frameReady.push_back(it->second);
             if (sameAs < 0)
-                FillLayerPass(*geometries[k], coords[k], exits, po, &frame.passes[slot]);
+                FillLayerPass(*geometries[k], coords[k], exits, po, &frame.passes[slot], s.threads);
         }
         stats->texgenSeconds += Since(tt);
     };

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <numeric>
 
@@ -11,6 +12,23 @@
 #include "trace/parallel.h"
 
 namespace pem::runtime {
+namespace {
+
+// fn(first, last) over [0, n) in chunks, in parallel when threads > 1.
+void ForChunks(size_t n, int threads, const std::function<void(size_t first, size_t last)>& fn) {
+    constexpr size_t kChunk = 8192;
+    const size_t chunks = (n + kChunk - 1) / kChunk;
+    if (threads <= 1 || chunks <= 1) {
+        if (n > 0) fn(0, n);
+        return;
+    }
+    trace::ParallelRows(static_cast<int>(chunks), threads, [&](int c) {
+        const size_t first = static_cast<size_t>(c) * kChunk;
+        fn(first, std::min(n, first + kChunk));
+    });
+}
+
+}  // namespace
 
 PassMesh MeshOf(const LensMesh& mesh) {
     return {&mesh.positions, &mesh.normals, &mesh.triangles};
@@ -21,14 +39,16 @@ PassMesh MeshOf(const trace::TessellationResult& tess) {
 }
 
 std::vector<ExitRay> TermExits(const std::vector<std::optional<trace::VertexPaths>>& paths,
-                               int term) {
+                               int term, int threads) {
     std::vector<ExitRay> exits(paths.size());
-    for (size_t v = 0; v < paths.size(); ++v) {
-        if (!paths[v]) continue;
-        const trace::RayPath& p = term == 0 ? paths[v]->reflection : paths[v]->refraction;
-        if (!p.escaped) continue;
-        exits[v] = {p.exitOrigin, p.exitDir, glm::vec3(p.F * p.G), true};
-    }
+    ForChunks(paths.size(), threads, [&](size_t first, size_t last) {
+        for (size_t v = first; v < last; ++v) {
+            if (!paths[v]) continue;
+            const trace::RayPath& p = term == 0 ? paths[v]->reflection : paths[v]->refraction;
+            if (!p.escaped) continue;
+            exits[v] = {p.exitOrigin, p.exitDir, glm::vec3(p.F * p.G), true};
+        }
+    });
     return exits;
 }
 
@@ -74,23 +94,50 @@ std::vector<glm::vec3> ShellCoords(const std::vector<ExitRay>& exits, const trac
     return coords;
 }
 
-std::vector<uint32_t> DrawOrder(const PassMesh& mesh, const raster::Camera& camera) {
+std::vector<uint32_t> DrawOrder(const PassMesh& mesh, const raster::Camera& camera, int threads) {
     const auto& pos = *mesh.positions;
     const auto& nrm = *mesh.normals;
     const auto& tris = *mesh.triangles;
-    std::vector<uint32_t> order;
-    std::vector<float> depth(tris.size(), 0.0f);
-    for (uint32_t i = 0; i < tris.size(); ++i) {
-        const glm::uvec3 t = tris[i];
-        bool front = false;
-        for (int k = 0; k < 3; ++k) front |= glm::dot(nrm[t[k]], camera.eye - pos[t[k]]) > 0.0f;
-        if (!front) continue;
-        const glm::vec3 c = (pos[t.x] + pos[t.y] + pos[t.z]) / 3.0f;
-        depth[i] = glm::length(c - camera.eye);
-        order.push_back(i);
-    }
-    std::stable_sort(order.begin(), order.end(),
-                     [&](uint32_t a, uint32_t b) { return depth[a] > depth[b]; });
+    // Step 1: per triangle, front-facing or not and its centroid distance (NaN: left out).
+    std::vector<float> depth(tris.size());
+    ForChunks(tris.size(), threads, [&](size_t first, size_t last) {
+        for (size_t i = first; i < last; ++i) {
+            const glm::uvec3 t = tris[i];
+            bool front = false;
+            for (int k = 0; k < 3; ++k) front |= glm::dot(nrm[t[k]], camera.eye - pos[t[k]]) > 0.0f;
+            const glm::vec3 c = (pos[t.x] + pos[t.y] + pos[t.z]) / 3.0f;
+            depth[i] =
+                front ? glm::length(c - camera.eye) : std::numeric_limits<float>::quiet_NaN();
+        }
+    });
+    // Step 2: far to near, ties by index (a stable sort by distance), as (distance, index) keys
+    // sorted in parallel parts and merged.
+    struct Key {
+        float depth;
+        uint32_t index;
+    };
+    std::vector<Key> keys;
+    keys.reserve(tris.size());
+    for (uint32_t i = 0; i < tris.size(); ++i)
+        if (!std::isnan(depth[i])) keys.push_back({depth[i], i});
+    auto farFirst = [](const Key& a, const Key& b) {
+        return a.depth > b.depth || (a.depth == b.depth && a.index < b.index);
+    };
+    const int parts = keys.size() < 16384 ? 1 : std::max(1, threads);
+    std::vector<size_t> bound(static_cast<size_t>(parts) + 1);
+    for (int p = 0; p <= parts; ++p) bound[static_cast<size_t>(p)] = keys.size() * p / parts;
+    trace::ParallelRows(parts, threads, [&](int p) {
+        std::sort(keys.begin() + static_cast<std::ptrdiff_t>(bound[static_cast<size_t>(p)]),
+                  keys.begin() + static_cast<std::ptrdiff_t>(bound[static_cast<size_t>(p) + 1]),
+                  farFirst);
+    });
+    for (int p = 1; p < parts; ++p)
+        std::inplace_merge(
+            keys.begin(), keys.begin() + static_cast<std::ptrdiff_t>(bound[static_cast<size_t>(p)]),
+            keys.begin() + static_cast<std::ptrdiff_t>(bound[static_cast<size_t>(p) + 1]),
+            farFirst);
+    std::vector<uint32_t> order(keys.size());
+    for (size_t k = 0; k < keys.size(); ++k) order[k] = keys[k].index;
     return order;
 }
 
@@ -110,33 +157,39 @@ raster::Pass LayerPass(const PassMesh& mesh, const std::vector<uint32_t>& order,
 }
 
 PassGeometry MakePassGeometry(const PassMesh& mesh, const std::vector<uint32_t>& order,
-                              const glm::mat4& viewProjection) {
+                              const glm::mat4& viewProjection, int threads) {
     PassGeometry g;
     const auto& pos = *mesh.positions;
     g.clip.resize(pos.size());
-    for (size_t v = 0; v < pos.size(); ++v) g.clip[v] = viewProjection * glm::vec4(pos[v], 1.0f);
-    g.indices.reserve(order.size() * 3);
-    for (uint32_t i : order) {
-        const glm::uvec3 t = (*mesh.triangles)[i];
-        g.indices.insert(g.indices.end(), {t.x, t.y, t.z});
-    }
+    g.indices.resize(order.size() * 3);
+    ForChunks(pos.size(), threads, [&](size_t first, size_t last) {
+        for (size_t v = first; v < last; ++v) g.clip[v] = viewProjection * glm::vec4(pos[v], 1.0f);
+    });
+    ForChunks(order.size(), threads, [&](size_t first, size_t last) {
+        for (size_t k = first; k < last; ++k) {
+            const glm::uvec3 t = (*mesh.triangles)[order[k]];
+            for (int c = 0; c < 3; ++c) g.indices[3 * k + static_cast<size_t>(c)] = t[c];
+        }
+    });
     return g;
 }
 
 void FillLayerPass(const PassGeometry& geometry, const std::vector<glm::vec3>& coords,
                    const std::vector<ExitRay>& exits, const PassOptions& options,
-                   raster::Pass* pass) {
+                   raster::Pass* pass, int threads) {
     pass->numUnits = 1;
     pass->texture = {options.texture, options.texture};
     pass->blend = options.blend;
     pass->vertices.resize(geometry.clip.size());
-    for (size_t v = 0; v < geometry.clip.size(); ++v) {
-        raster::Vertex& out = pass->vertices[v];
-        out.pos = geometry.clip[v];
-        out.coord[0] = coords[v];
-        out.coord[1] = glm::vec3(0.0f);
-        out.color = options.modulate ? glm::vec4(exits[v].weight, 1.0f) : glm::vec4(1.0f);
-    }
+    ForChunks(geometry.clip.size(), threads, [&](size_t first, size_t last) {
+        for (size_t v = first; v < last; ++v) {
+            raster::Vertex& out = pass->vertices[v];
+            out.pos = geometry.clip[v];
+            out.coord[0] = coords[v];
+            out.coord[1] = glm::vec3(0.0f);
+            out.color = options.modulate ? glm::vec4(exits[v].weight, 1.0f) : glm::vec4(1.0f);
+        }
+    });
     pass->indices = geometry.indices;
 }
 

@@ -15,7 +15,8 @@
 // at infinity). Vertices without a path get weight 0.
 // Passes: clip-space positions from the camera's ViewProjection (near/far from the mesh depth
 // range, depth clamped); back-facing triangles (every vertex normal away from the eye) left out;
-// the rest drawn far to near (centroid distance, ties by index) since raster/ has no depth test.
+// the rest drawn far to near (centroid distance, ties by index) since raster/ has no depth test
+// (a triangle whose distance is not a number is left out).
 // Colour = (F·G, 1) when modulating, white otherwise; alpha stays the texture's coverage.
 // Not here: the vertex rays (lens_paths.h), compositing of layers and terms (renderer.h).
 #pragma once
@@ -47,19 +48,22 @@ struct PassMesh {
 PassMesh MeshOf(const LensMesh& mesh);
 PassMesh MeshOf(const trace::TessellationResult& tess);
 
+// Threads: the functions taking `threads` split their vertices or triangles into chunks done in
+// parallel; the result is the same for any thread count.
+
 // Step: exit rays.
 std::vector<ExitRay> TermExits(const std::vector<std::optional<trace::VertexPaths>>& paths,
-                               int term);
+                               int term, int threads = 1);
 std::vector<ExitRay> ReflectionExits(const PassMesh& mesh, const glm::vec3& eye,
                                      const glm::vec3& f0);
 
 // Step: texture coordinates on a layer's shell.
-// `threads` > 1: vertex chunks in parallel (the same result).
 std::vector<glm::vec3> ShellCoords(const std::vector<ExitRay>& exits, const trace::Shell& shell,
                                    const glm::vec3& emOrigin, int threads = 1);
 
 // Step: the visible triangles, far to near.
-std::vector<uint32_t> DrawOrder(const PassMesh& mesh, const raster::Camera& camera);
+std::vector<uint32_t> DrawOrder(const PassMesh& mesh, const raster::Camera& camera,
+                                int threads = 1);
 
 struct PassOptions {
     int texture = 0;        // raster::Frame::textures index for unit 0
@@ -81,9 +85,9 @@ struct PassGeometry {
     std::vector<uint32_t> indices;
 };
 PassGeometry MakePassGeometry(const PassMesh& mesh, const std::vector<uint32_t>& order,
-                              const glm::mat4& viewProjection);
+                              const glm::mat4& viewProjection, int threads = 1);
 void FillLayerPass(const PassGeometry& geometry, const std::vector<glm::vec3>& coords,
                    const std::vector<ExitRay>& exits, const PassOptions& options,
-                   raster::Pass* pass);
+                   raster::Pass* pass, int threads = 1);
 
 }  // namespace pem::runtime

@@ -1,12 +1,14 @@
 // SPDX-License-Identifier: MIT
 // texgen_test.cpp — the renderer's shortcuts give the same bytes as the plain calls: LayerPass
-// in two steps (shared geometry, per-layer fill into a reused pass), ShellCoords on threads, and
+// in two steps (shared geometry, per-layer fill into a reused pass), ShellCoords, DrawOrder,
+// MakePassGeometry and FillLayerPass on threads (DrawOrder also against a stable sort), and
 // raster::RenderFrames (passes with the same geometry set up once, lane groups shaded once for
 // all frames, filter footprints shared by textures of one shape) against one Render per frame.
 #include "runtime/texgen.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "raster/render.h"
@@ -21,8 +23,7 @@ struct Fixture {
     std::vector<ExitRay> exits;
     raster::Camera camera;
 
-    Fixture() {
-        const int n = 60;
+    explicit Fixture(int n = 60) {
         for (int y = 0; y <= n; ++y)
             for (int x = 0; x <= n; ++x) {
                 const float u = static_cast<float>(x) / n - 0.5f,
@@ -57,6 +58,43 @@ TEST(Texgen, ShellCoordsSameForAnyThreadCount) {
     const std::vector<glm::vec3> one = ShellCoords(f.exits, shell, {0.0f, 0.0f, 0.1f});
     for (int threads : {2, 3})
         EXPECT_EQ(ShellCoords(f.exits, shell, {0.0f, 0.0f, 0.1f}, threads), one) << threads;
+}
+
+TEST(Texgen, DrawOrderIsAStableSortForAnyThreadCount) {
+    const Fixture f(130);  // 33800 triangles: sorted in parts and merged
+    const PassMesh mesh = MeshOf(f.mesh);
+    // Reference: front-facing triangles by decreasing centroid distance, ties in index order.
+    std::vector<uint32_t> reference;
+    std::vector<float> depth(f.mesh.triangles.size());
+    for (uint32_t i = 0; i < f.mesh.triangles.size(); ++i) {
+        const glm::uvec3 t = f.mesh.triangles[i];
+        bool front = false;
+        for (int k = 0; k < 3; ++k)
+            front |= glm::dot(f.mesh.normals[t[k]], f.camera.eye - f.mesh.positions[t[k]]) > 0.0f;
+        const glm::vec3 c =
+            (f.mesh.positions[t.x] + f.mesh.positions[t.y] + f.mesh.positions[t.z]) / 3.0f;
+        depth[i] = glm::length(c - f.camera.eye);
+        if (front) reference.push_back(i);
+    }
+    std::stable_sort(reference.begin(), reference.end(),
+                     [&](uint32_t a, uint32_t b) { return depth[a] > depth[b]; });
+    ASSERT_GT(reference.size(), 16384u);
+    for (int threads : {1, 2, 3}) {
+        EXPECT_EQ(DrawOrder(mesh, f.camera, threads), reference) << threads;
+        const glm::mat4 vp = PassViewProjection(mesh, f.camera);
+        const PassGeometry one = MakePassGeometry(mesh, reference, vp);
+        const PassGeometry many = MakePassGeometry(mesh, reference, vp, threads);
+        EXPECT_EQ(many.clip, one.clip) << threads;
+        EXPECT_EQ(many.indices, one.indices) << threads;
+        std::vector<glm::vec3> coords(f.exits.size());
+        for (size_t v = 0; v < coords.size(); ++v) coords[v] = f.exits[v].dir;
+        PassOptions po;
+        po.modulate = true;
+        raster::Pass a, b;
+        FillLayerPass(one, coords, f.exits, po, &a);
+        FillLayerPass(one, coords, f.exits, po, &b, threads);
+        EXPECT_EQ(b, a) << threads;
+    }
 }
 
 TEST(Texgen, FillLayerPassEqualsLayerPass) {
