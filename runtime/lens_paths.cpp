@@ -43,8 +43,8 @@ trace::VertexPaths VertexRay(const trace::Tracer& tracer, const trace::EmbreeSce
         if (!hit.valid) return none;
     }
     // Step 2: the two greedy paths from it.
-    const std::optional<trace::GreedyPaths> paths = tracer.GreedyPathsAt(ray, hit, group, counts);
-    return paths ? *paths : none;
+    std::optional<trace::GreedyPaths> paths = tracer.GreedyPathsAt(ray, hit, group, counts);
+    return paths ? std::move(*paths) : none;
 }
 
 // Per input vertex, the triangles using it (CSR, in mesh order).

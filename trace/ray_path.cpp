@@ -112,6 +112,7 @@ namespace {
 RayPath TraceGreedyPath(Ray ray, SurfaceHit hit, Event event, SurfaceHitFn& hits, int maxDepth,
                         double minWeight) {
     RayPath path;
+    path.vertices.reserve(static_cast<size_t>(std::max(1, maxDepth)));  // one allocation
     Medium medium;
     for (;;) {
         // Step 1: attenuate the segment to this hit, then apply the event's coefficient.

@@ -47,6 +47,12 @@ class EdgeHash {
             if (keys_[i] == kEmpty) return nullptr;
         }
     }
+    // Room for `n` entries without rehashing.
+    void Reserve(size_t n) {
+        size_t capacity = keys_.size();
+        while (2 * n > capacity) capacity *= 2;
+        if (capacity != keys_.size()) Rehash(capacity);
+    }
     void Insert(uint64_t key, uint32_t value) {
         if (2 * (size_ + 1) > keys_.size()) Rehash(2 * keys_.size());
         size_t i = Slot(key);
@@ -332,6 +338,18 @@ TessellationResult Tessellator::Run() {
         runs[static_cast<size_t>(r)] = std::move(run);
     });
     out_.paths = std::move(shared_.paths);
+    size_t created = 0, leaves = 0;
+    for (const std::unique_ptr<Refiner>& run : runs) {
+        created += run->positions.size();
+        leaves += run->leaves.size();
+    }
+    const size_t total = in_.positions.size() + created;
+    out_.positions.reserve(total);
+    out_.normals.reserve(total);
+    out_.paths.reserve(total);
+    occluded.reserve(total);
+    leaves_.reserve(leaves);
+    midpoints_.Reserve(created);
     for (std::unique_ptr<Refiner>& run : runs) Merge(std::move(*run), &occluded);
     runs.clear();
     // Step 3: close the t-junctions between differently refined neighbours.

@@ -300,7 +300,7 @@ GreedySample Tracer::TraceGreedy(const Ray& ray, const Hit& first, int group,
 
 std::optional<GreedyPaths> Tracer::GreedyPathsAt(const Ray& ray, const Hit& first, int group,
                                                  RayCounts& counts) const {
-    std::vector<GroupHits::Exit> exits;
+    thread_local std::vector<GroupHits::Exit> exits;  // not read here: kept to save allocations
     GroupHits hits(*this, group, first, counts, exits);
     return TraceGreedyPaths(ray, hits, options_.fullTreeDepth, options_.minWeight);
 }
