@@ -15,6 +15,7 @@
 
 #include "trace/scene.h"
 #include "trace/trace_run.h"
+#include "viewer_tty/display.h"
 #include "viewer_tty/input_error.h"
 #include "viewer_tty/png_io.h"
 #include "viewer_tty/progress.h"
@@ -54,21 +55,9 @@ std::vector<raster::Camera> ParseViews(const trace::Scene& scene, const std::str
     return trace::CircleViews(cam, trace::LensCentre(scene), n, step);
 }
 
-uint8_t ToDisplay(float v, float exposure) {
-    const float c = std::clamp(v * exposure, 0.0f, 1.0f);
-    const float s = c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
-    return static_cast<uint8_t>(std::lround(s * 255.0f));
-}
-
 void WritePreview(const std::string& exrPath, const trace::FloatImage& img, float exposure) {
-    raster::Image8 out{img.width, img.height, {}};
-    out.rgba.reserve(static_cast<size_t>(img.width) * img.height * 4);
-    for (int y = 0; y < img.height; ++y)
-        for (int x = 0; x < img.width; ++x) {
-            const float* p = img.At(x, y);
-            for (int c = 0; c < 3; ++c) out.rgba.push_back(ToDisplay(p[c], exposure));
-            out.rgba.push_back(255);
-        }
+    const raster::Image8 out =
+        ToDisplayImage(img.data, img.width, img.height, img.channels, exposure);
     WritePng(exrPath.substr(0, exrPath.size() - 4) + ".png", out);
 }
 

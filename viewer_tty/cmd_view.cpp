@@ -111,7 +111,8 @@ int RunViewCommand() {
                           samples.c_str(), 1e3 * fs.lensSeconds,
                           static_cast<unsigned long long>(fs.vertexRays), fs.trianglesOut);
         }
-        return ViewFrame{ToDisplayImage(f.image.data, cam.width, cam.height, 3, 1.0f), info};
+        return ViewFrame{ToDisplayImage(f.image.data, cam.width, cam.height, 3, 1.0f, a.threads),
+                         info};
     };
     ViewerOptions o;
     o.keys = a.keys;

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "raster/worker_pool.h"
+
 namespace pem::cli {
 
 uint8_t ToDisplay(float v, float exposure) {
@@ -14,14 +16,21 @@ uint8_t ToDisplay(float v, float exposure) {
 }
 
 raster::Image8 ToDisplayImage(const std::vector<float>& data, int width, int height, int channels,
-                              float exposure) {
+                              float exposure, int threads) {
     raster::Image8 out{width, height, {}};
-    out.rgba.reserve(static_cast<size_t>(width) * static_cast<size_t>(height) * 4);
-    for (size_t p = 0; p < static_cast<size_t>(width) * static_cast<size_t>(height); ++p) {
-        for (size_t c = 0; c < 3; ++c)
-            out.rgba.push_back(ToDisplay(data[p * static_cast<size_t>(channels) + c], exposure));
-        out.rgba.push_back(255);
-    }
+    const size_t n = static_cast<size_t>(width) * static_cast<size_t>(height);
+    out.rgba.resize(4 * n);
+    const int parts = std::clamp(threads, 1, std::max(1, height));
+    raster::RunOnWorkers(parts, [&](int part) {
+        const size_t first = n * static_cast<size_t>(part) / static_cast<size_t>(parts);
+        const size_t last = n * static_cast<size_t>(part + 1) / static_cast<size_t>(parts);
+        for (size_t p = first; p < last; ++p) {
+            for (size_t c = 0; c < 3; ++c)
+                out.rgba[4 * p + c] =
+                    ToDisplay(data[p * static_cast<size_t>(channels) + c], exposure);
+            out.rgba[4 * p + 3] = 255;
+        }
+    });
     return out;
 }
 

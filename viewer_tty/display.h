@@ -12,8 +12,9 @@ namespace pem::cli {
 
 uint8_t ToDisplay(float v, float exposure);
 
-// `channels` floats per pixel (RGB first), rows top-down; alpha 255.
+// `channels` floats per pixel (RGB first), rows top-down; alpha 255. `threads` > 1: row ranges
+// in parallel (the same bytes).
 raster::Image8 ToDisplayImage(const std::vector<float>& data, int width, int height, int channels,
-                              float exposure);
+                              float exposure, int threads = 1);
 
 }  // namespace pem::cli

@@ -70,9 +70,29 @@ std::vector<Rgb> Resample(const raster::Image8& img, int width, int height) {
     return out;
 }
 
+// Decimal digits of 0 <= v <= 999 at p; returns the end.
+char* PutDecimal(char* p, int v) {
+    if (v >= 100) *p++ = static_cast<char>('0' + v / 100);
+    if (v >= 10) *p++ = static_cast<char>('0' + v / 10 % 10);
+    *p++ = static_cast<char>('0' + v % 10);
+    return p;
+}
+
+// ESC [ layer ; 2 ; r ; g ; b m, formatted in place (no temporaries: a frame has thousands).
 void AppendColour(std::string* out, int layer, const Rgb& c) {
-    *out += "\x1b[" + std::to_string(layer) + ";2;" + std::to_string(c.r) + ";" +
-            std::to_string(c.g) + ";" + std::to_string(c.b) + "m";
+    char buf[32];
+    char* p = buf;
+    *p++ = '\x1b';
+    *p++ = '[';
+    p = PutDecimal(p, layer);
+    *p++ = ';';
+    *p++ = '2';
+    for (const uint8_t v : {c.r, c.g, c.b}) {
+        *p++ = ';';
+        p = PutDecimal(p, v);
+    }
+    *p++ = 'm';
+    out->append(buf, p);
 }
 
 }  // namespace
@@ -86,6 +106,7 @@ std::string HalfBlockFrame(const raster::Image8& img, int cols, int rows) {
     };
     // Step 2: one '▀' per cell; an escape only where the colour changes along the row.
     std::string out;
+    out.reserve(static_cast<size_t>(cols) * static_cast<size_t>(rows) * 24);
     for (int row = 0; row < rows; ++row) {
         if (row > 0) out += '\n';
         std::optional<Rgb> fg, bg;
