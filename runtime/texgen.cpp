@@ -123,7 +123,7 @@ std::vector<uint32_t> DrawOrder(const PassMesh& mesh, const raster::Camera& came
     auto farFirst = [](const Key& a, const Key& b) {
         return a.depth > b.depth || (a.depth == b.depth && a.index < b.index);
     };
-    const int parts = keys.size() < 16384 ? 1 : std::max(1, threads);
+    const int parts = keys.size() < 4096 ? 1 : std::max(1, threads);
     std::vector<size_t> bound(static_cast<size_t>(parts) + 1);
     for (int p = 0; p <= parts; ++p) bound[static_cast<size_t>(p)] = keys.size() * p / parts;
     trace::ParallelRows(parts, threads, [&](int p) {

@@ -383,23 +383,32 @@ void Tessellator::Validate() const {
 // Every vertex of a front-facing input triangle is traced (the serial refinement would trace them
 // lazily, with the same calls).
 void Tessellator::TraceInputVertices() {
-    const size_t n = in_.positions.size();
+    const size_t n = in_.positions.size(), nTri = in_.triangles.size();
+    // Projections and back-facing flags in parallel chunks (pure callbacks).
+    constexpr size_t kBookChunk = 4096;
     shared_.screen.resize(n);
-    for (size_t v = 0; v < n; ++v) shared_.screen[v] = in_.project(in_.positions[v]);
+    shared_.backFacing.assign(nTri, 0);
+    const size_t bookChunks = (std::max(n, nTri) + kBookChunk - 1) / kBookChunk;
+    ParallelRows(static_cast<int>(bookChunks), threads_, [&](int c) {
+        const size_t first = static_cast<size_t>(c) * kBookChunk;
+        for (size_t v = first; v < std::min(n, first + kBookChunk); ++v)
+            shared_.screen[v] = in_.project(in_.positions[v]);
+        if (!in_.backFacing) return;
+        for (size_t i = first; i < std::min(nTri, first + kBookChunk); ++i) {
+            const glm::uvec3& t = in_.triangles[i];
+            TriangleGeometry g;
+            for (int k = 0; k < 3; ++k) {
+                g.positions[static_cast<size_t>(k)] = in_.positions[t[k]];
+                g.normals[static_cast<size_t>(k)] = in_.normals[t[k]];
+            }
+            shared_.backFacing[i] = in_.backFacing(g) ? 1 : 0;
+        }
+    });
     std::vector<uint8_t> wanted(n, 0);
-    shared_.backFacing.assign(in_.triangles.size(), 0);
-    for (size_t i = 0; i < in_.triangles.size(); ++i) {
+    for (size_t i = 0; i < nTri; ++i) {
+        if (shared_.backFacing[i]) continue;
         const glm::uvec3& t = in_.triangles[i];
-        TriangleGeometry g;
-        for (int k = 0; k < 3; ++k) {
-            g.positions[static_cast<size_t>(k)] = in_.positions[t[k]];
-            g.normals[static_cast<size_t>(k)] = in_.normals[t[k]];
-        }
-        if (in_.backFacing && in_.backFacing(g)) {
-            shared_.backFacing[i] = 1;
-        } else {
-            wanted[t.x] = wanted[t.y] = wanted[t.z] = 1;
-        }
+        wanted[t.x] = wanted[t.y] = wanted[t.z] = 1;
     }
     shared_.paths.assign(n, std::nullopt);
     constexpr size_t kChunk = 256;
