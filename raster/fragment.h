@@ -32,12 +32,17 @@ constexpr int kBandQuadRows = 4;  // rows of 2x2 quads per band (8 pixel rows)
 // One draw of a pass into one target.
 using PassDraw = std::pair<const FragmentTarget*, const Pass*>;
 
+// Set-up triangles of one pass geometry, per variant (render.cpp DrawPass): chunk[k][i] of every
+// k is the same triangle with variant k's attribute planes.
+using SetupChunk = std::vector<std::vector<TriangleSetup>>;
+
 // Draws the triangles of one pass geometry into the row bands owned by `worker` of `workers`
-// (band b of kBandQuadRows quad rows belongs to worker b % workers), for every draw: the draws'
-// passes have equal vertices and indices (render.cpp SameGeometry), so coverage, interpolation
-// and the filter footprints of equally shaped textures are computed once per lane group.
-using DrawBandsFn = void (*)(const std::vector<PassDraw>& draws,
-                             const std::vector<TriangleSetup>& triangles, int worker, int workers);
+// (band b of kBandQuadRows quad rows belongs to worker b % workers), for every draw. The passes
+// of all draws have the same positions and indices, so coverage is computed once per lane
+// group; the draws of one variant have equal vertices, so interpolation and the filter
+// footprints of equally shaped textures are computed once per lane group and variant.
+using DrawBandsFn = void (*)(const std::vector<std::vector<PassDraw>>& variants,
+                             const SetupChunk& triangles, int worker, int workers);
 
 DrawBandsFn DrawBandsBase();
 DrawBandsFn DrawBandsFma();  // nullptr when not built (non-x86-64 or unoptimised builds)

@@ -43,31 +43,37 @@ uint32_t Index(const Pass& pass, size_t i) {
 // not referenced.
 enum class VertexState : uint8_t { Unused, Inside, Outside };
 
+// The state (shared by the variants: the same positions) and each variant's window vertices.
 struct PassVertices {
     std::vector<VertexState> state;
-    std::vector<WindowVertex> window;
+    std::vector<std::vector<WindowVertex>> window;  // [variant][vertex]
 };
 
-// The referenced vertices in [first, last): clip test and, inside, the viewport transform.
-void TransformVertices(const Frame& frame, const Pass& pass, size_t first, size_t last,
-                       PassVertices* pv) {
-    const int numAttribs = ColourOffset(pass) + 4;
+// The referenced vertices in [first, last): clip test and, inside, the viewport transform of
+// every variant's pass.
+void TransformVertices(const Frame& frame, const std::vector<const Pass*>& passes, size_t first,
+                       size_t last, PassVertices* pv) {
+    const int numAttribs = ColourOffset(*passes[0]) + 4;
     for (size_t v = first; v < last; ++v) {
         if (pv->state[v] == VertexState::Unused) continue;
-        const Vertex& vx = pass.vertices[v];
-        if (!InsideViewVolume(vx.pos, frame.depthClamp)) {
+        if (!InsideViewVolume(passes[0]->vertices[v].pos, frame.depthClamp)) {
             pv->state[v] = VertexState::Outside;
             continue;
         }
-        pv->window[v] =
-            ToWindow(Fetch(pass, static_cast<uint32_t>(v)), numAttribs, frame.width, frame.height);
+        for (size_t k = 0; k < passes.size(); ++k)
+            pv->window[k][v] = ToWindow(Fetch(*passes[k], static_cast<uint32_t>(v)), numAttribs,
+                                        frame.width, frame.height);
     }
 }
 
-// Clipping and triangle setup of triangles [first, last) of one pass, appended to `setups`;
-// triangles inside the view volume take the transformed vertices.
-void SetupTriangles(const Frame& frame, const Pass& pass, const PassVertices& pv, int first,
-                    int last, std::vector<TriangleSetup>* setups) {
+// Clipping and triangle setup of triangles [first, last) of one pass geometry, appended to
+// each variant's `setups` (setups[k][i] of every k are the same triangle: which triangles are
+// drawn, and their coverage, depend on the positions only). Triangles inside the view volume
+// take the transformed vertices and are set up once, then given each variant's attribute planes.
+void SetupTriangles(const Frame& frame, const std::vector<const Pass*>& passes,
+                    const PassVertices& pv, int first, int last,
+                    std::vector<std::vector<TriangleSetup>>* setups) {
+    const Pass& pass = *passes[0];
     const int numAttribs = ColourOffset(pass) + 4;
     std::vector<WindowTriangle> clipped;
     TriangleSetup s;
@@ -79,17 +85,27 @@ void SetupTriangles(const Frame& frame, const Pass& pass, const PassVertices& pv
             inside = inside && pv.state[idx[k]] == VertexState::Inside;
         }
         if (inside) {
-            if (SetupTriangle(pv.window[idx[0]], pv.window[idx[1]], pv.window[idx[2]], numAttribs,
-                              frame.width, frame.height, &s))
-                setups->push_back(s);
+            const std::vector<WindowVertex>& w0 = pv.window[0];
+            if (!SetupTriangle(w0[idx[0]], w0[idx[1]], w0[idx[2]], numAttribs, frame.width,
+                               frame.height, &s))
+                continue;
+            (*setups)[0].push_back(s);
+            for (size_t k = 1; k < passes.size(); ++k) {
+                const std::vector<WindowVertex>& wk = pv.window[k];
+                SetupAttributePlanes(wk[idx[0]], wk[idx[1]], wk[idx[2]], numAttribs, &s);
+                (*setups)[k].push_back(s);
+            }
             continue;
         }
-        clipped.clear();
-        ClipTriangle(Fetch(pass, idx[0]), Fetch(pass, idx[1]), Fetch(pass, idx[2]), numAttribs,
-                     frame.depthClamp, frame.width, frame.height, &clipped);
-        for (const WindowTriangle& w : clipped)
-            if (SetupTriangle(w[0], w[1], w[2], numAttribs, frame.width, frame.height, &s))
-                setups->push_back(s);
+        for (size_t k = 0; k < passes.size(); ++k) {
+            const Pass& pk = *passes[k];
+            clipped.clear();
+            ClipTriangle(Fetch(pk, idx[0]), Fetch(pk, idx[1]), Fetch(pk, idx[2]), numAttribs,
+                         frame.depthClamp, frame.width, frame.height, &clipped);
+            for (const WindowTriangle& w : clipped)
+                if (SetupTriangle(w[0], w[1], w[2], numAttribs, frame.width, frame.height, &s))
+                    (*setups)[k].push_back(s);
+        }
     }
 }
 
@@ -110,13 +126,17 @@ void RunWorkers(int workers, bool ftz, const Fn& fn) {
 // Triangles set up and drawn per batch, so the setups stay small and in cache.
 constexpr int kBatchTriangles = 8192;
 
-// One pass drawn into one or more targets: draws[0]'s pass is set up (clipping, setup) and its
-// triangles drawn with each draw's own pass state and textures; every draw's pass must have the
-// same geometry (SameGeometry) in frames of the same size.
-void DrawPass(const std::vector<PassDraw>& draws, std::vector<std::vector<TriangleSetup>>* chunks,
+// One pass geometry drawn into one or more targets. Variants: groups of draws whose passes
+// have the same vertices (SameGeometry); every variant's pass has the same positions and indices
+// (SamePositions) in frames of the same size. Each variant's first pass is set up (clipping,
+// setup; coverage once for all variants) and its triangles drawn with each draw's own pass
+// state and textures.
+void DrawPass(const std::vector<std::vector<PassDraw>>& variants, std::vector<SetupChunk>* chunks,
               PassVertices* pv) {
-    const FragmentTarget& tg0 = *draws[0].first;
-    const Pass& pass = *draws[0].second;
+    const FragmentTarget& tg0 = *variants[0][0].first;
+    const Pass& pass = *variants[0][0].second;
+    std::vector<const Pass*> passes;
+    for (const std::vector<PassDraw>& v : variants) passes.push_back(v[0].second);
     const bool ftz = tg0.options.profile == Profile::Llvmpipe;  // Linear: plain IEEE arithmetic
     const Frame& frame = tg0.frame->frame();
     const DrawBandsFn drawBands = SelectDrawBands();
@@ -126,45 +146,57 @@ void DrawPass(const std::vector<PassDraw>& draws, std::vector<std::vector<Triang
     const int n = pass.NumTriangles();
     pv->state.assign(nv, pass.indices.empty() ? VertexState::Inside : VertexState::Unused);
     for (uint32_t i : pass.indices) pv->state[i] = VertexState::Inside;
-    pv->window.resize(nv);
+    pv->window.resize(passes.size());
+    for (std::vector<WindowVertex>& w : pv->window) w.resize(nv);
     SpinBarrier sync(workers);
     RunWorkers(workers, ftz, [&](int w) {
         // Step 2: vertex processing in contiguous ranges.
-        TransformVertices(frame, pass, nv * static_cast<size_t>(w) / workers,
+        TransformVertices(frame, passes, nv * static_cast<size_t>(w) / workers,
                           nv * static_cast<size_t>(w + 1) / workers, pv);
         sync.ArriveAndWait();
         // Step 3: per batch, setup in contiguous chunks of triangles, then fragments by row bands
         // over the chunks in primitive order.
-        std::vector<TriangleSetup>& mine = (*chunks)[static_cast<size_t>(w)];
+        SetupChunk& mine = (*chunks)[static_cast<size_t>(w)];
+        mine.resize(passes.size());
         for (int b0 = 0; b0 < n; b0 += kBatchTriangles) {
             const int nb = std::min(kBatchTriangles, n - b0);
-            mine.clear();
-            SetupTriangles(frame, pass, *pv, b0 + nb * w / workers, b0 + nb * (w + 1) / workers,
+            for (std::vector<TriangleSetup>& v : mine) v.clear();
+            SetupTriangles(frame, passes, *pv, b0 + nb * w / workers, b0 + nb * (w + 1) / workers,
                            &mine);
             sync.ArriveAndWait();
-            for (const std::vector<TriangleSetup>& c : *chunks) drawBands(draws, c, w, workers);
+            for (const SetupChunk& c : *chunks) drawBands(variants, c, w, workers);
             sync.ArriveAndWait();
         }
     });
 }
 
-// Whether two passes of equally sized frames give the same triangle setups: bitwise equal
-// vertices (Vertex is 14 floats, no padding) and indices.
-bool SameGeometry(const Frame& fa, const Pass& a, const Frame& fb, const Pass& b) {
-    static_assert(sizeof(Vertex) == 14 * sizeof(float));
-    return fa.width == fb.width && fa.height == fb.height && fa.depthClamp == fb.depthClamp &&
-           a.numUnits == b.numUnits && a.indices == b.indices &&
-           a.vertices.size() == b.vertices.size() &&
-           std::memcmp(a.vertices.data(), b.vertices.data(), a.vertices.size() * sizeof(Vertex)) ==
-               0;
+// Whether two passes of equally sized frames give the same triangles at the same places:
+// bitwise equal positions, indices and attribute count.
+bool SamePositions(const Frame& fa, const Pass& a, const Frame& fb, const Pass& b) {
+    if (fa.width != fb.width || fa.height != fb.height || fa.depthClamp != fb.depthClamp ||
+        a.numUnits != b.numUnits || a.indices != b.indices ||
+        a.vertices.size() != b.vertices.size())
+        return false;
+    for (size_t v = 0; v < a.vertices.size(); ++v)
+        if (std::memcmp(&a.vertices[v].pos, &b.vertices[v].pos, sizeof(glm::vec4)) != 0)
+            return false;
+    return true;
 }
 
-// Draws every frame's passes, each framebuffer's in order; pass p of several frames with the
-// same geometry is set up once.
+// Whether two such passes give the same triangle setups: bitwise equal vertices (Vertex is 14
+// floats, no padding).
+bool SameVertices(const Pass& a, const Pass& b) {
+    static_assert(sizeof(Vertex) == 14 * sizeof(float));
+    return std::memcmp(a.vertices.data(), b.vertices.data(), a.vertices.size() * sizeof(Vertex)) ==
+           0;
+}
+
+// Draws every frame's passes, each framebuffer's in order; pass p of several frames at the same
+// positions is set up once (its attribute planes once per distinct set of vertices).
 void DrawFrames(const std::vector<FragmentTarget>& targets) {
     const int workers = std::max(1, targets[0].options.threads);
     PassVertices pv;
-    std::vector<std::vector<TriangleSetup>> chunks(static_cast<size_t>(workers));
+    std::vector<SetupChunk> chunks(static_cast<size_t>(workers));
     size_t nPasses = 0;
     for (const FragmentTarget& tg : targets)
         nPasses = std::max(nPasses, tg.frame->frame().passes.size());
@@ -173,16 +205,24 @@ void DrawFrames(const std::vector<FragmentTarget>& targets) {
         for (size_t f = 0; f < targets.size(); ++f) {
             const Frame& frame = targets[f].frame->frame();
             if (drawn[f] || p >= frame.passes.size()) continue;
-            std::vector<PassDraw> draws{{&targets[f], &frame.passes[p]}};
+            std::vector<std::vector<PassDraw>> variants{{{&targets[f], &frame.passes[p]}}};
             for (size_t g = f + 1; g < targets.size(); ++g) {
                 const Frame& other = targets[g].frame->frame();
                 if (drawn[g] || p >= other.passes.size() ||
-                    !SameGeometry(frame, frame.passes[p], other, other.passes[p]))
+                    !SamePositions(frame, frame.passes[p], other, other.passes[p]))
                     continue;
-                draws.push_back({&targets[g], &other.passes[p]});
+                const Pass& op = other.passes[p];
+                auto same = std::find_if(variants.begin(), variants.end(), [&](const auto& v) {
+                    return SameVertices(*v[0].second, op);
+                });
+                if (same == variants.end()) {
+                    variants.emplace_back();
+                    same = variants.end() - 1;
+                }
+                same->push_back({&targets[g], &op});
                 drawn[g] = 1;
             }
-            DrawPass(draws, &chunks, &pv);
+            DrawPass(variants, &chunks, &pv);
         }
     }
 }

@@ -124,13 +124,15 @@ void ShadeGroup(const FragmentTarget& tg, const Pass& pass, const LaneAttribs& q
     }
 }
 
-// Draws the 4x2 lane groups of one triangle that lie in the bands owned by `worker`, into every
-// draw (draws share the pass geometry: the same coverage and attributes; each samples its own
-// textures and writes its own target). A group is shaded when at least one of its pixels is
-// covered (llvmpipe skips empty 8-lane vectors).
-// `footprints`: the caller's scratch (reset per lane group).
-void DrawTriangle(const PassDraw* draws, int numDraws, const TriangleSetup& t, int worker,
-                  int workers, std::array<FastFootprints, kMaxUnits>* footprints) {
+// Draws the 4x2 lane groups of triangle i that lie in the bands owned by `worker`, into every
+// draw of every variant (variants[k] draws triangles[k][i]: the same coverage, its own
+// attributes; each draw samples its own textures and writes its own target). A group is shaded
+// when at least one of its pixels is covered (llvmpipe skips empty 8-lane vectors).
+// `footprints`: the caller's scratch (reset per lane group and variant).
+void DrawTriangle(const std::vector<std::vector<PassDraw>>& variants, const SetupChunk& triangles,
+                  size_t i, int worker, int workers,
+                  std::array<FastFootprints, kMaxUnits>* footprints) {
+    const TriangleSetup& t = triangles[0][i];
     // A triangle in fewer bands than there are workers may lie in none of this worker's.
     const int band0 = (t.y0 & ~1) / 2 / kBandQuadRows, band1 = t.y1 / 2 / kBandQuadRows;
     if (band1 - band0 + 1 < workers) {
@@ -164,19 +166,21 @@ void DrawTriangle(const PassDraw* draws, int numDraws, const TriangleSetup& t, i
                     mask &= ~(static_cast<unsigned>(base + laneOffset[e][l] <= 0) << l);
             }
             if (!mask) continue;
-            InterpolateLanes(t, gx, gy, &qa);
-            for (FastFootprints& f : *footprints) f.shape = nullptr;  // new coordinates
-            for (int d = 0; d < numDraws; ++d)
-                ShadeGroup(*draws[d].first, *draws[d].second, qa, gx, gy, mask, footprints);
+            for (size_t k = 0; k < variants.size(); ++k) {
+                InterpolateLanes(triangles[k][i], gx, gy, &qa);
+                for (FastFootprints& f : *footprints) f.shape = nullptr;  // new coordinates
+                for (const PassDraw& d : variants[k])
+                    ShadeGroup(*d.first, *d.second, qa, gx, gy, mask, footprints);
+            }
         }
     }
 }
 
-void DrawBands(const std::vector<PassDraw>& draws, const std::vector<TriangleSetup>& triangles,
+void DrawBands(const std::vector<std::vector<PassDraw>>& variants, const SetupChunk& triangles,
                int worker, int workers) {
     std::array<FastFootprints, kMaxUnits> footprints;
-    for (const TriangleSetup& t : triangles)
-        DrawTriangle(draws.data(), static_cast<int>(draws.size()), t, worker, workers, &footprints);
+    for (size_t i = 0; i < triangles[0].size(); ++i)
+        DrawTriangle(variants, triangles, i, worker, workers, &footprints);
 }
 
 }  // namespace

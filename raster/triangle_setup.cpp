@@ -46,6 +46,36 @@ Edge MakeEdge(const Fixed& p, int i) {
     return {c, dcdx * 256, dcdy * 256};
 }
 
+// Attribute planes from the float positions (lp_state_setup.c's generated code); with
+// `withPositionPlanes` also 1/w and z.
+void Planes(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c, int numAttribs,
+            bool withPositionPlanes, TriangleSetup* out) {
+    const WindowVertex* v[3] = {&a, &b, &c};
+    const float x0c = v[0]->x - 0.5f, y0c = v[0]->y - 0.5f;
+    float dx01 = v[0]->x - v[1]->x, dy01 = v[0]->y - v[1]->y;
+    float dx20 = v[2]->x - v[0]->x, dy20 = v[2]->y - v[0]->y;
+    const float e = dx01 * dy20, f = dy01 * dx20;
+    const float ooa = 1.0f / (e - f);
+    dx20 *= ooa;
+    dy20 *= ooa;
+    dx01 *= ooa;
+    dy01 *= ooa;
+    auto plane = [&](float a0, float a1, float a2) {
+        const float da01 = a0 - a1, da20 = a2 - a0;
+        const float dadx = da01 * dy20 - da20 * dy01;
+        const float dady = da20 * dx01 - da01 * dx20;
+        return Plane{a0 - (dadx * x0c + dady * y0c), dadx, dady};
+    };
+    if (withPositionPlanes) {
+        out->oow = plane(v[0]->oow, v[1]->oow, v[2]->oow);
+        out->z = plane(v[0]->z, v[1]->z, v[2]->z);
+    }
+    out->numAttribs = numAttribs;
+    for (int k = 0; k < numAttribs; ++k)
+        out->attr[k] =
+            plane(v[0]->attr[k] * v[0]->oow, v[1]->attr[k] * v[1]->oow, v[2]->attr[k] * v[2]->oow);
+}
+
 }  // namespace
 
 bool SetupTriangle(const WindowVertex& in0, const WindowVertex& in1, const WindowVertex& in2,
@@ -80,29 +110,18 @@ bool SetupTriangle(const WindowVertex& in0, const WindowVertex& in1, const Windo
         if (!covers) return false;
     }
 
-    // Attribute planes from the float positions (lp_state_setup.c's generated code).
-    const float x0c = v[0]->x - 0.5f, y0c = v[0]->y - 0.5f;
-    float dx01 = v[0]->x - v[1]->x, dy01 = v[0]->y - v[1]->y;
-    float dx20 = v[2]->x - v[0]->x, dy20 = v[2]->y - v[0]->y;
-    const float e = dx01 * dy20, f = dy01 * dx20;
-    const float ooa = 1.0f / (e - f);
-    dx20 *= ooa;
-    dy20 *= ooa;
-    dx01 *= ooa;
-    dy01 *= ooa;
-    auto plane = [&](float a0, float a1, float a2) {
-        const float da01 = a0 - a1, da20 = a2 - a0;
-        const float dadx = da01 * dy20 - da20 * dy01;
-        const float dady = da20 * dx01 - da01 * dx20;
-        return Plane{a0 - (dadx * x0c + dady * y0c), dadx, dady};
-    };
-    out->oow = plane(v[0]->oow, v[1]->oow, v[2]->oow);
-    out->z = plane(v[0]->z, v[1]->z, v[2]->z);
-    out->numAttribs = numAttribs;
-    for (int k = 0; k < numAttribs; ++k)
-        out->attr[k] =
-            plane(v[0]->attr[k] * v[0]->oow, v[1]->attr[k] * v[1]->oow, v[2]->attr[k] * v[2]->oow);
+    out->swapped = sign < 0;
+    Planes(*v[0], *v[1], *v[2], numAttribs, true, out);
     return true;
+}
+
+void SetupAttributePlanes(const WindowVertex& v0, const WindowVertex& v1, const WindowVertex& v2,
+                          int numAttribs, TriangleSetup* out) {
+    if (out->swapped) {
+        Planes(v1, v0, v2, numAttribs, false, out);
+    } else {
+        Planes(v0, v1, v2, numAttribs, false, out);
+    }
 }
 
 }  // namespace pem::raster

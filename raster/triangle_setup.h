@@ -44,6 +44,7 @@ struct TriangleSetup {
     Plane z;             // window z (unused for colour, kept for depth clamp checks)
     std::array<Plane, kMaxAttribs> attr;  // premultiplied by 1/w (perspective-correct)
     int numAttribs = 0;
+    bool swapped = false;  // clockwise: set up as (v1, v0, v2)
 };
 
 // Sets up a triangle for a framebuffer of width x height. Returns false when nothing is drawn
@@ -51,6 +52,11 @@ struct TriangleSetup {
 // no pixel centre).
 bool SetupTriangle(const WindowVertex& v0, const WindowVertex& v1, const WindowVertex& v2,
                    int numAttribs, int width, int height, TriangleSetup* out);
+
+// The attribute planes of `out`, set up by SetupTriangle from vertices at the same positions,
+// for other attributes: (v0, v1, v2) are those vertices with the other attributes.
+void SetupAttributePlanes(const WindowVertex& v0, const WindowVertex& v1, const WindowVertex& v2,
+                          int numAttribs, TriangleSetup* out);
 
 // Edge test of one pixel.
 inline bool Inside(const TriangleSetup& t, int x, int y) {

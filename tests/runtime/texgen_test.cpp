@@ -2,8 +2,9 @@
 // texgen_test.cpp — the renderer's shortcuts give the same bytes as the plain calls: LayerPass
 // in two steps (shared geometry, per-layer fill into a reused pass), ShellCoords, DrawOrder,
 // MakePassGeometry and FillLayerPass on threads (DrawOrder also against a stable sort), and
-// raster::RenderFrames (passes with the same geometry set up once, lane groups shaded once for
-// all frames, filter footprints shared by textures of one shape) against one Render per frame.
+// raster::RenderFrames (passes at the same positions set up once, their attribute planes once
+// per distinct vertices, lane groups shaded once for all frames, filter footprints shared by
+// textures of one shape) against one Render per frame.
 #include "runtime/texgen.h"
 
 #include <gtest/gtest.h>
@@ -131,21 +132,30 @@ TEST(Texgen, RenderFramesEqualsRenderPerFrame) {
     raster::Frame d = b, e = b;
     for (raster::Texture& t : d.textures) t.sampler.lodBias = 0.7f;
     for (raster::Texture& t : e.textures) t.sampler.mipFilter = raster::MipFilter::Nearest;
-    const raster::PreparedFrame pa(a), pb(b), pc(c), pd(d), pe(e);
+    // Same positions, other texture coordinates and colours (another term's pass): coverage
+    // shared, attributes not; g and h are one such variant drawn into two frames.
+    raster::Frame g = a;
+    for (raster::Pass& pass : g.passes)
+        for (raster::Vertex& v : pass.vertices) {
+            v.coord[0] = glm::vec3(v.coord[0].y, -v.coord[0].z, 1.3f * v.coord[0].x);
+            v.color *= 0.6f;
+        }
+    raster::Frame h = g;
+    for (raster::Texture& t : h.textures) t.sampler.lodBias = -0.4f;
+    const raster::PreparedFrame pa(a), pb(b), pc(c), pd(d), pe(e), pg(g), ph(h);
     for (int threads : {1, 3}) {
         raster::RenderOptions opt;
         opt.threads = threads;
-        const std::vector<raster::RenderResult> all =
-            raster::RenderFrames({&pa, &pb, &pc, &pd, &pe}, opt);
-        ASSERT_EQ(all.size(), 5u);
-        EXPECT_EQ(all[0].image8, raster::Render(pa, opt).image8) << threads;
-        EXPECT_EQ(all[1].image8, raster::Render(pb, opt).image8) << threads;
-        EXPECT_EQ(all[2].image8, raster::Render(pc, opt).image8) << threads;
-        EXPECT_EQ(all[3].image8, raster::Render(pd, opt).image8) << threads;
-        EXPECT_EQ(all[4].image8, raster::Render(pe, opt).image8) << threads;
+        const std::vector<const raster::PreparedFrame*> frames{&pa, &pb, &pc, &pg, &pd, &pe, &ph};
+        const std::vector<raster::RenderResult> all = raster::RenderFrames(frames, opt);
+        ASSERT_EQ(all.size(), frames.size());
+        for (size_t f = 0; f < frames.size(); ++f)
+            EXPECT_EQ(all[f].image8, raster::Render(*frames[f], opt).image8) << threads << f;
         EXPECT_NE(all[0].image8, all[1].image8);
-        EXPECT_NE(all[1].image8, all[3].image8);
         EXPECT_NE(all[1].image8, all[4].image8);
+        EXPECT_NE(all[1].image8, all[5].image8);
+        EXPECT_NE(all[0].image8, all[3].image8);
+        EXPECT_NE(all[3].image8, all[6].image8);
     }
 }
 
