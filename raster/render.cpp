@@ -7,6 +7,7 @@
 #include "raster/render.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstring>
 #include <stdexcept>
@@ -177,10 +178,12 @@ bool SamePositions(const Frame& fa, const Pass& a, const Frame& fb, const Pass& 
         a.numUnits != b.numUnits || a.indices != b.indices ||
         a.vertices.size() != b.vertices.size())
         return false;
+    bool same = true;  // no early exit: the loop vectorises
     for (size_t v = 0; v < a.vertices.size(); ++v)
-        if (std::memcmp(&a.vertices[v].pos, &b.vertices[v].pos, sizeof(glm::vec4)) != 0)
-            return false;
-    return true;
+        for (int c = 0; c < 4; ++c)
+            same &= std::bit_cast<uint32_t>(a.vertices[v].pos[c]) ==
+                    std::bit_cast<uint32_t>(b.vertices[v].pos[c]);
+    return same;
 }
 
 // Whether two such passes give the same triangle setups: bitwise equal vertices (Vertex is 14

@@ -3,6 +3,7 @@
 #include "runtime/renderer.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <map>
@@ -55,12 +56,15 @@ raster::BlendState PremultipliedOver() {
     return b;
 }
 
-// Adds weight · frame / 255 to acc at the listed pixels (RGB per listed pixel).
+// Adds weight · frame / 255 to acc at the listed pixels (RGB per listed pixel); the 256 terms
+// are computed once (the same expression, so the same bits).
 void Accumulate(const raster::Image8& img, double weight, const std::vector<uint32_t>& pixels,
                 std::vector<double>* acc) {
+    std::array<double, 256> term;
+    for (int b = 0; b < 256; ++b) term[static_cast<size_t>(b)] = weight * b / 255.0;
     for (size_t k = 0; k < pixels.size(); ++k)
         for (size_t c = 0; c < 3; ++c)
-            (*acc)[3 * k + c] += weight * img.rgba[4 * size_t{pixels[k]} + c] / 255.0;
+            (*acc)[3 * k + c] += term[img.rgba[4 * size_t{pixels[k]} + c]];
 }
 
 // What a PreparedFrame needs of a texture it is given prepared: kind, size, sampler and level
