@@ -128,7 +128,7 @@ void RunWorkers(int workers, bool ftz, const Fn& fn) {
 constexpr int kBatchTriangles = 8192;
 
 // One pass geometry drawn into one or more targets. Variants: groups of draws whose passes
-// have the same vertices (SameGeometry); every variant's pass has the same positions and indices
+// have the same vertices (SameVertices); every variant's pass has the same positions and indices
 // (SamePositions) in frames of the same size. Each variant's first pass is set up (clipping,
 // setup; coverage once for all variants) and its triangles drawn with each draw's own pass
 // state and textures.
