@@ -61,29 +61,37 @@ struct VertexTriangles {
     }
 };
 
-// Input vertex v's surface seen from the eye: the first triangle using it whose geometric normal
-// (unit, along (p1 − p0) × (p2 − p0), as Embree reports it) faces the eye, at v's corner.
+// Triangle i at barycentric (u, v) as a hit seen from the eye, when its geometric normal (unit,
+// along (p1 − p0) × (p2 − p0), as Embree reports it) faces the eye at `position`.
+std::optional<trace::Hit> TriangleSurface(const LensMesh& mesh, size_t i, float u, float v,
+                                          const glm::vec3& position, const glm::vec3& eye) {
+    const glm::uvec3 t = mesh.triangles[i];
+    const glm::vec3 p0 = mesh.positions[t.x], p1 = mesh.positions[t.y], p2 = mesh.positions[t.z];
+    const glm::vec3 n = glm::cross(p1 - p0, p2 - p0);
+    const float len = glm::length(n);
+    if (!(len > 0.0f) || !std::isfinite(len)) return std::nullopt;
+    const glm::vec3 ng = n / len;
+    if (!(glm::dot(position - eye, ng) < 0.0f)) return std::nullopt;
+    trace::Hit hit;
+    hit.object = mesh.source[i].x;
+    hit.prim = mesh.source[i].y;
+    hit.u = u;
+    hit.v = v;
+    hit.ng = ng;
+    hit.valid = true;
+    return hit;
+}
+
+// Input vertex v's surface seen from the eye: the first triangle using it that faces the eye,
+// at v's corner.
 std::optional<trace::Hit> InputSurface(const LensMesh& mesh, const VertexTriangles& vt, size_t v,
                                        const glm::vec3& eye) {
-    const glm::vec3 dir = mesh.positions[v] - eye;
     for (uint32_t k = vt.start[v]; k < vt.start[v + 1]; ++k) {
         const uint32_t i = vt.tri[k];
         const glm::uvec3 t = mesh.triangles[i];
-        const glm::vec3 p0 = mesh.positions[t.x], p1 = mesh.positions[t.y],
-                        p2 = mesh.positions[t.z];
-        const glm::vec3 n = glm::cross(p1 - p0, p2 - p0);
-        const float len = glm::length(n);
-        if (!(len > 0.0f) || !std::isfinite(len)) continue;
-        const glm::vec3 ng = n / len;
-        if (!(glm::dot(dir, ng) < 0.0f)) continue;
-        trace::Hit hit;
-        hit.object = mesh.source[i].x;
-        hit.prim = mesh.source[i].y;
-        hit.u = t.y == v ? 1.0f : 0.0f;
-        hit.v = t.z == v ? 1.0f : 0.0f;
-        hit.ng = ng;
-        hit.valid = true;
-        return hit;
+        if (std::optional<trace::Hit> hit = TriangleSurface(
+                mesh, i, t.y == v ? 1.0f : 0.0f, t.z == v ? 1.0f : 0.0f, mesh.positions[v], eye))
+            return hit;
     }
     return std::nullopt;
 }
@@ -136,6 +144,10 @@ LensPaths TraceLensPaths(const trace::Tracer& tracer, const trace::EmbreeScene& 
     in.evaluate = [&](const glm::vec3& p, const glm::vec3&) { return evaluate(p, std::nullopt); };
     in.evaluateInput = [&](size_t v) {
         return evaluate(mesh.positions[v], InputSurface(mesh, vertexTriangles, v, camera.eye));
+    };
+    in.evaluateMidpoint = [&](const glm::vec3& p, const glm::vec3&, const trace::MeshPoint& at) {
+        return evaluate(p, TriangleSurface(mesh, at.triangle, static_cast<float>(at.u),
+                                           static_cast<float>(at.v), p, camera.eye));
     };
     trace::TessOptions tess = options.tess;
     if (!options.adaptive) tess.maxDepth = 0;

@@ -7,9 +7,11 @@
 //   // lp.tess.positions / normals / triangles / paths: the refined mesh and each vertex's paths
 //
 // Vertex rays: the ray from the eye to the vertex starts at the vertex's own surface, so a vertex
-// hidden behind another part of the object still gets it. For a vertex of the input mesh that
-// surface is known without a ray: the first triangle using the vertex (in mesh order) that faces
-// the eye, at its corner. Other vertices (midpoints, or no such triangle) intersect the ray from
+// hidden behind another part of the object still gets it. That surface is known without a ray
+// for a vertex of the input mesh (the first triangle using it, in mesh order, that faces the
+// eye, at its corner) and for a midpoint inside an input triangle (that triangle, if it faces
+// the eye, at the midpoint's barycentric weights). Other vertices (midpoints on the input mesh's
+// edges, or no such triangle) intersect the ray from
 // just before the vertex (tnear = 0.999 · distance); when that misses the group (a silhouette
 // vertex grazed by float error), the group's first hit along the ray is used (segment.h
 // IncomingHit). From that hit the two greedy paths (Tracer::GreedyPathsAt). A vertex with no

@@ -23,6 +23,9 @@ namespace pem::trace {
 namespace {
 
 using Tri = std::array<uint32_t, 3>;
+// Barycentric (u, v) of a triangle's corners in the input triangle being refined (weights of its
+// corners 1 and 2; dyadic fractions, exact in double).
+using Bary = std::array<glm::dvec2, 3>;
 
 constexpr int kMaxDepthCap = 24;  // keeps the dyadic reference coordinates exact in double
 
@@ -150,13 +153,13 @@ class Refiner {
     TessStats stats;                    // split*, backFacing and occludedTriangles
 
   private:
-    void Refine(const Tri& tri, int depth);
+    void Refine(const Tri& tri, const Bary& at, int depth);
     bool WantsSplit(const Tri& tri, const std::array<bool, 3>& longEdges);
-    void Split(const Tri& tri, const std::array<bool, 3>& longEdges, int depth);
-    void Split2(const Tri& r, int depth);
-    void Split3(const Tri& r, int depth);
-    void Split4(const Tri& r, int depth);
-    uint32_t Midpoint(uint32_t u, uint32_t v);
+    void Split(const Tri& tri, const Bary& at, const std::array<bool, 3>& longEdges, int depth);
+    void Split2(const Tri& r, const Bary& at, int depth);
+    void Split3(const Tri& r, const Bary& at, int depth);
+    void Split4(const Tri& r, const Bary& at, int depth);
+    uint32_t Midpoint(uint32_t u, uint32_t v, const glm::dvec2& au, const glm::dvec2& av);
     bool Occluded(uint32_t v);
     double ScreenLength(uint32_t u, uint32_t v) const;
 
@@ -171,6 +174,7 @@ class Refiner {
 
     const Shared& s_;
     const uint32_t nIn_;
+    size_t input_ = 0;    // the input triangle being refined
     EdgeHash midpoints_;  // edge (sorted pair, run indices) → midpoint vertex
 };
 
@@ -183,18 +187,19 @@ void Refiner::Run(size_t first, size_t last) {
             leaves.push_back(tri);
             continue;
         }
-        Refine(tri, 0);
+        input_ = i;
+        Refine(tri, {glm::dvec2(0.0, 0.0), glm::dvec2(1.0, 0.0), glm::dvec2(0.0, 1.0)}, 0);
     }
 }
 
-void Refiner::Refine(const Tri& tri, int depth) {
+void Refiner::Refine(const Tri& tri, const Bary& at, int depth) {
     std::array<bool, 3> longEdges{};
     for (size_t k = 0; k < 3; ++k) {
         // !(len <= t): a non-finite projection counts as long.
         longEdges[k] = !(ScreenLength(tri[k], tri[(k + 1) % 3]) <= s_.opt.maxEdgeSubpixels);
     }
     if (depth < s_.maxDepth && WantsSplit(tri, longEdges)) {
-        Split(tri, longEdges, depth);
+        Split(tri, at, longEdges, depth);
     } else {
         leaves.push_back(tri);
     }
@@ -217,7 +222,8 @@ bool Refiner::WantsSplit(const Tri& tri, const std::array<bool, 3>& longEdges) {
 
 // Rotate so that the split edges come first (1-to-2: edge 0; 1-to-3: edges 0 and 1), keeping the
 // winding.
-void Refiner::Split(const Tri& tri, const std::array<bool, 3>& longEdges, int depth) {
+void Refiner::Split(const Tri& tri, const Bary& at, const std::array<bool, 3>& longEdges,
+                    int depth) {
     const int count = static_cast<int>(std::count(longEdges.begin(), longEdges.end(), true));
     size_t first = 0;
     for (size_t k = 0; k < 3; ++k) {
@@ -225,46 +231,51 @@ void Refiner::Split(const Tri& tri, const std::array<bool, 3>& longEdges, int de
         if (isFirst) first = count == 1 ? k : (k + 1) % 3;
     }
     const Tri r{tri[first], tri[(first + 1) % 3], tri[(first + 2) % 3]};
-    if (count == 1) Split2(r, depth);
-    if (count == 2) Split3(r, depth);
-    if (count == 3) Split4(tri, depth);
+    const Bary ra{at[first], at[(first + 1) % 3], at[(first + 2) % 3]};
+    if (count == 1) Split2(r, ra, depth);
+    if (count == 2) Split3(r, ra, depth);
+    if (count == 3) Split4(tri, at, depth);
 }
 
-void Refiner::Split2(const Tri& r, int depth) {
+void Refiner::Split2(const Tri& r, const Bary& a, int depth) {
     ++stats.split2;
-    const uint32_t m = Midpoint(r[0], r[1]);
-    Refine({r[0], m, r[2]}, depth + 1);
-    Refine({m, r[1], r[2]}, depth + 1);
+    const glm::dvec2 am = 0.5 * (a[0] + a[1]);
+    const uint32_t m = Midpoint(r[0], r[1], a[0], a[1]);
+    Refine({r[0], m, r[2]}, {a[0], am, a[2]}, depth + 1);
+    Refine({m, r[1], r[2]}, {am, a[1], a[2]}, depth + 1);
 }
 
 // Edges r0-r1 and r1-r2 split; the quad (r0, m0, m1, r2) is cut along its shorter screen diagonal.
-void Refiner::Split3(const Tri& r, int depth) {
+void Refiner::Split3(const Tri& r, const Bary& a, int depth) {
     ++stats.split3;
-    const uint32_t m0 = Midpoint(r[0], r[1]);
-    const uint32_t m1 = Midpoint(r[1], r[2]);
-    Refine({m0, r[1], m1}, depth + 1);
+    const glm::dvec2 a0 = 0.5 * (a[0] + a[1]), a1 = 0.5 * (a[1] + a[2]);
+    const uint32_t m0 = Midpoint(r[0], r[1], a[0], a[1]);
+    const uint32_t m1 = Midpoint(r[1], r[2], a[1], a[2]);
+    Refine({m0, r[1], m1}, {a0, a[1], a1}, depth + 1);
     if (ScreenLength(m0, r[2]) < ScreenLength(r[0], m1)) {
-        Refine({r[0], m0, r[2]}, depth + 1);
-        Refine({m0, m1, r[2]}, depth + 1);
+        Refine({r[0], m0, r[2]}, {a[0], a0, a[2]}, depth + 1);
+        Refine({m0, m1, r[2]}, {a0, a1, a[2]}, depth + 1);
     } else {
-        Refine({r[0], m0, m1}, depth + 1);
-        Refine({r[0], m1, r[2]}, depth + 1);
+        Refine({r[0], m0, m1}, {a[0], a0, a1}, depth + 1);
+        Refine({r[0], m1, r[2]}, {a[0], a1, a[2]}, depth + 1);
     }
 }
 
-void Refiner::Split4(const Tri& r, int depth) {
+void Refiner::Split4(const Tri& r, const Bary& a, int depth) {
     ++stats.split4;
-    const uint32_t m0 = Midpoint(r[0], r[1]);
-    const uint32_t m1 = Midpoint(r[1], r[2]);
-    const uint32_t m2 = Midpoint(r[2], r[0]);
-    Refine({r[0], m0, m2}, depth + 1);
-    Refine({m0, r[1], m1}, depth + 1);
-    Refine({m2, m1, r[2]}, depth + 1);
-    Refine({m0, m1, m2}, depth + 1);
+    const glm::dvec2 a0 = 0.5 * (a[0] + a[1]), a1 = 0.5 * (a[1] + a[2]), a2 = 0.5 * (a[2] + a[0]);
+    const uint32_t m0 = Midpoint(r[0], r[1], a[0], a[1]);
+    const uint32_t m1 = Midpoint(r[1], r[2], a[1], a[2]);
+    const uint32_t m2 = Midpoint(r[2], r[0], a[2], a[0]);
+    Refine({r[0], m0, m2}, {a[0], a0, a2}, depth + 1);
+    Refine({m0, r[1], m1}, {a0, a[1], a1}, depth + 1);
+    Refine({m2, m1, r[2]}, {a2, a1, a[2]}, depth + 1);
+    Refine({m0, m1, m2}, {a0, a1, a2}, depth + 1);
 }
 
-// The shared midpoint of edge (u, v): looked up in the hash, else created and traced once.
-uint32_t Refiner::Midpoint(uint32_t u, uint32_t v) {
+// The shared midpoint of edge (u, v): looked up in the hash, else created and traced once (on
+// the input triangle being refined, where u and v are at au and av).
+uint32_t Refiner::Midpoint(uint32_t u, uint32_t v, const glm::dvec2& au, const glm::dvec2& av) {
     const uint64_t key = EdgeKey(u, v);
     if (const uint32_t* m = midpoints_.Find(key)) return *m;
     glm::vec3 position, normal;
@@ -275,7 +286,15 @@ uint32_t Refiner::Midpoint(uint32_t u, uint32_t v) {
     screen.push_back(s_.in.project(position));
     occluded.push_back(-1);
     parents.push_back({u, v});
-    paths.push_back(s_.in.evaluate(position, normal));
+    // Inside the input triangle only this run can create the midpoint; on an input edge a
+    // neighbour's run may create it too, so its paths must not depend on the triangle.
+    const glm::dvec2 at = 0.5 * (au + av);
+    const bool inside = at.x > 0.0 && at.y > 0.0 && at.x + at.y < 1.0;
+    if (inside && s_.in.evaluateMidpoint) {
+        paths.push_back(s_.in.evaluateMidpoint(position, normal, {input_, at.x, at.y}));
+    } else {
+        paths.push_back(s_.in.evaluate(position, normal));
+    }
     midpoints_.Insert(key, m);
     return m;
 }

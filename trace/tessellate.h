@@ -15,8 +15,8 @@
 // Threads: the input vertices are traced in parallel chunks, then runs of consecutive input
 // triangles are refined in parallel (each with its own midpoint hash) and merged in index order,
 // which reproduces the serial numbering; the callbacks must then be thread-safe pure functions.
-// The output does not depend on the thread count; only `evaluate` may be called more than once
-// for a midpoint on the border of two runs.
+// The output does not depend on the thread count; only `evaluate` (or `evaluateMidpoint`) may be
+// called more than once for a midpoint on the border of two runs.
 // Back-facing triangles are not refined and their vertices are not traced (unless a front-facing
 // triangle shares them); triangles whose three vertices are occluded are traced but not refined.
 //
@@ -53,18 +53,31 @@ using EvaluateFn = std::function<VertexPaths(const glm::vec3& position, const gl
 // Traces input vertex `index` (its position and normal are the input's): lets the caller use
 // what it knows of the input mesh (e.g. the surface point without a primary ray).
 using EvaluateInputFn = std::function<VertexPaths(size_t index)>;
+// Where a midpoint lies: inside input triangle `triangle`, at barycentric weights (u, v) of its
+// corners 1 and 2 (exact dyadic fractions; the midpoint's position is its edge's midpoint).
+struct MeshPoint {
+    size_t triangle = 0;
+    double u = 0.0, v = 0.0;
+};
+// Traces a midpoint inside an input triangle knowing that triangle (e.g. its surface without a
+// primary ray). Midpoints on the input mesh's edges, which a neighbour's refinement may create
+// too, use `evaluate` (a function of the position only, so the result does not depend on which
+// triangle or run created them).
+using EvaluateMidpointFn = std::function<VertexPaths(const glm::vec3& position,
+                                                     const glm::vec3& normal, const MeshPoint& at)>;
 using BackFacingFn = std::function<bool(const TriangleGeometry& triangle)>;
 using OccludedFn = std::function<bool(const glm::vec3& position)>;
 
 struct TessInput {
-    std::vector<glm::vec3> positions;   // world space
-    std::vector<glm::vec3> normals;     // unit, one per position
-    std::vector<glm::uvec3> triangles;  // indices into positions
-    ProjectFn project;                  // required
-    EvaluateFn evaluate;                // required
-    EvaluateInputFn evaluateInput;      // optional: input vertices (else evaluate)
-    BackFacingFn backFacing;            // optional: empty = every triangle front-facing
-    OccludedFn occluded;                // optional: empty = every vertex visible
+    std::vector<glm::vec3> positions;     // world space
+    std::vector<glm::vec3> normals;       // unit, one per position
+    std::vector<glm::uvec3> triangles;    // indices into positions
+    ProjectFn project;                    // required
+    EvaluateFn evaluate;                  // required
+    EvaluateInputFn evaluateInput;        // optional: input vertices (else evaluate)
+    EvaluateMidpointFn evaluateMidpoint;  // optional: midpoints (else evaluate)
+    BackFacingFn backFacing;              // optional: empty = every triangle front-facing
+    OccludedFn occluded;                  // optional: empty = every vertex visible
 };
 
 struct TessOptions {

@@ -2,13 +2,15 @@
 // tessellate_test.cpp — adaptive tessellation on planar meshes with analytic fake vertex paths:
 // watertightness after t-junction removal (edge pairing, original boundary, no vertex inside an
 // edge), the split criteria on hand-made paths (topology, 2.9° vs 3.1°, short edges → 1-to-2 and
-// 1-to-3), back-facing and occluded triangles, area preservation, one trace per vertex.
+// 1-to-3), back-facing and occluded triangles, area preservation, one trace per vertex, interior
+// midpoints traced on their input triangle.
 // Conventions: meshes lie in z = 0 with normals +z; the projection is (x, y) · scale subpixels.
 #include "trace/tessellate.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <map>
 #include <memory>
@@ -254,6 +256,46 @@ TEST(Tessellate, ThreadCountDoesNotChangeResult) {
             }
         }
     }
+}
+
+// evaluateMidpoint: called for midpoints strictly inside an input triangle, with that triangle
+// and the midpoint's barycentric weights; edge midpoints go to evaluate. Paths that depend on
+// the triangle still give the same result for any thread count.
+TEST(Tessellate, InteriorMidpointsKnowTheirTriangle) {
+    TessInput in = Grid(6);
+    in.project = Scaled(40.0f);
+    in.evaluate = [](const glm::vec3& p, const glm::vec3&) { return RegionPaths(p); };
+    std::atomic<int> interior{0}, wrong{0};
+    in.evaluateMidpoint = [&](const glm::vec3& p, const glm::vec3&, const MeshPoint& at) {
+        ++interior;
+        const glm::uvec3 t = in.triangles.at(at.triangle);
+        const glm::dvec3 q = (1.0 - at.u - at.v) * glm::dvec3(in.positions[t.x]) +
+                             at.u * glm::dvec3(in.positions[t.y]) +
+                             at.v * glm::dvec3(in.positions[t.z]);
+        if (!(at.u > 0.0 && at.v > 0.0 && at.u + at.v < 1.0) ||
+            glm::length(q - glm::dvec3(p)) > 1e-6)
+            ++wrong;
+        // Paths depending on the triangle: odd triangles turn the exit 2° more.
+        VertexPaths paths = RegionPaths(p);
+        if (at.triangle % 2)
+            paths.reflection.exitDir = Rotated(2.0 + 2.0 * static_cast<double>(p.x));
+        return paths;
+    };
+    const TessellationResult one = Tessellate(in, {.maxDepth = 6});
+    EXPECT_GT(interior.load(), 0);
+    EXPECT_EQ(wrong.load(), 0);
+    ExpectWatertight(in, one);
+    for (int threads : {2, 3}) {
+        const TessellationResult many = Tessellate(in, {.maxDepth = 6, .threads = threads});
+        EXPECT_EQ(many.positions, one.positions) << threads;
+        EXPECT_EQ(many.triangles, one.triangles) << threads;
+        ASSERT_EQ(many.paths.size(), one.paths.size());
+        for (size_t v = 0; v < one.paths.size(); ++v) {
+            if (!one.paths[v]) continue;
+            EXPECT_EQ(many.paths[v]->reflection, one.paths[v]->reflection) << v;
+        }
+    }
+    EXPECT_EQ(wrong.load(), 0);
 }
 
 TEST(Tessellate, IdenticalPathsNeverSplit) {
