@@ -37,9 +37,11 @@ raster::Texture ToTexture8(const CubeMapF& map, const raster::SamplerState& samp
     for (const auto& level : map.levels) {
         std::vector<uint8_t> bytes(level.size());
         for (size_t k = 0; k < level.size(); ++k) {
-            // NaN maps to 0 (std::clamp would keep it); nearbyint rounds half to even.
+            // NaN maps to 0 (std::clamp would keep it). Rounded half to even as nearbyint does
+            // in the default rounding mode, without a library call: adding and subtracting 2^52
+            // leaves v * 255 (in [0, 255]) rounded to an integer.
             const double v = level[k] >= 0.0f ? std::min(static_cast<double>(level[k]), 1.0) : 0.0;
-            bytes[k] = static_cast<uint8_t>(std::nearbyint(v * 255.0));
+            bytes[k] = static_cast<uint8_t>((v * 255.0 + 0x1p52) - 0x1p52);
         }
         t.levels.push_back(std::move(bytes));
     }

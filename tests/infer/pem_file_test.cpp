@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <set>
 
@@ -114,6 +115,41 @@ TEST(PemFile, EightBitCopy) {
     const raster::Texture t = ToTexture8(map, {});
     const std::vector<uint8_t> expect{0, 0, 0, 1, 255, 255, 255, 0, 64, 128, 191, 255};
     for (size_t k = 0; k < expect.size(); ++k) EXPECT_EQ(t.levels[0][k], expect[k]) << k;
+}
+
+// The 8-bit copy rounds v * 255 half to even, as std::nearbyint: checked on every float in
+// [0, 1] near the 255 rounding boundaries (k + 1/2) / 255 (±64 ulps) and on a stride through all.
+TEST(PemFile, EightBitCopyRoundsAsNearbyint) {
+    std::vector<float> values;
+    for (int k = 0; k < 255; ++k) {
+        const float b = static_cast<float>((k + 0.5) / 255.0);
+        float lo = b, hi = b;
+        for (int i = 0; i < 64; ++i) {
+            lo = std::nextafter(lo, 0.0f);
+            hi = std::nextafter(hi, 1.0f);
+            values.insert(values.end(), {lo, hi});
+        }
+        values.push_back(b);
+    }
+    for (uint32_t bits = 0; bits <= 0x3f800000u; bits += 7919) {
+        float f;
+        std::memcpy(&f, &bits, sizeof f);
+        values.push_back(f);
+    }
+    while (values.size() % 24) values.push_back(0.0f);  // whole 1x1 cube maps (6 faces x RGBA)
+    CubeMapF map;
+    map.size = 1;
+    for (size_t k = 0; k < values.size(); k += 24)
+        map.levels.emplace_back(values.begin() + static_cast<std::ptrdiff_t>(k),
+                                values.begin() + static_cast<std::ptrdiff_t>(k + 24));
+    const raster::Texture t = ToTexture8(map, {});
+    size_t bad = 0;
+    for (size_t k = 0; k < values.size(); ++k) {
+        const auto want =
+            static_cast<uint8_t>(std::nearbyint(static_cast<double>(values[k]) * 255.0));
+        bad += t.levels[k / 24][k % 24] != want;
+    }
+    EXPECT_EQ(bad, 0u);
 }
 
 }  // namespace
