@@ -7,6 +7,7 @@
 #include "raster/render.h"
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <cstring>
@@ -234,10 +235,15 @@ void DrawFrame(const FragmentTarget& tg) {
     DrawFrames({tg});
 }
 
+// The float of each byte (c / 255, or llvmpipe's c * fl(1/255)), through a table of the 256.
 std::vector<float> ToFloat(const std::vector<uint8_t>& bytes, bool exact) {
+    std::array<float, 256> table;
+    for (int c = 0; c < 256; ++c) {
+        const auto b = static_cast<uint8_t>(c);
+        table[static_cast<size_t>(c)] = exact ? static_cast<float>(b) / 255.0f : FloatFromUnorm8(b);
+    }
     std::vector<float> f(bytes.size());
-    for (size_t i = 0; i < bytes.size(); ++i)
-        f[i] = exact ? static_cast<float>(bytes[i]) / 255.0f : FloatFromUnorm8(bytes[i]);
+    for (size_t i = 0; i < bytes.size(); ++i) f[i] = table[bytes[i]];
     return f;
 }
 
