@@ -8,9 +8,11 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <bit>
 #include <cmath>
 #include <cstring>
+#include <exception>
 #include <stdexcept>
 
 #include "raster/blend.h"
@@ -151,24 +153,45 @@ void DrawPass(const std::vector<std::vector<PassDraw>>& variants, std::vector<Se
     pv->window.resize(passes.size());
     for (std::vector<WindowVertex>& w : pv->window) w.resize(nv);
     SpinBarrier sync(workers);
+    // A worker whose step throws does no more work but keeps arriving at the barriers, so the
+    // others are not left waiting; every worker skips the steps after a failure, and
+    // RunOnWorkers rethrows the error once all have returned.
+    std::atomic<bool> failed{false};
     RunWorkers(workers, ftz, [&](int w) {
+        std::exception_ptr error;
+        auto step = [&](const auto& work) {
+            if (failed.load()) return;
+            try {
+                work();
+            } catch (...) {
+                error = std::current_exception();
+                failed = true;
+            }
+        };
         // Step 2: vertex processing in contiguous ranges.
-        TransformVertices(frame, passes, nv * static_cast<size_t>(w) / workers,
-                          nv * static_cast<size_t>(w + 1) / workers, pv);
+        step([&] {
+            TransformVertices(frame, passes, nv * static_cast<size_t>(w) / workers,
+                              nv * static_cast<size_t>(w + 1) / workers, pv);
+        });
         sync.ArriveAndWait();
         // Step 3: per batch, setup in contiguous chunks of triangles, then fragments by row bands
         // over the chunks in primitive order.
         SetupChunk& mine = (*chunks)[static_cast<size_t>(w)];
-        mine.resize(passes.size());
         for (int b0 = 0; b0 < n; b0 += kBatchTriangles) {
             const int nb = std::min(kBatchTriangles, n - b0);
-            for (std::vector<TriangleSetup>& v : mine) v.clear();
-            SetupTriangles(frame, passes, *pv, b0 + nb * w / workers, b0 + nb * (w + 1) / workers,
-                           &mine);
+            step([&] {
+                mine.resize(passes.size());
+                for (std::vector<TriangleSetup>& v : mine) v.clear();
+                SetupTriangles(frame, passes, *pv, b0 + nb * w / workers,
+                               b0 + nb * (w + 1) / workers, &mine);
+            });
             sync.ArriveAndWait();
-            for (const SetupChunk& c : *chunks) drawBands(variants, c, w, workers);
+            step([&] {
+                for (const SetupChunk& c : *chunks) drawBands(variants, c, w, workers);
+            });
             sync.ArriveAndWait();
         }
+        if (error) std::rethrow_exception(error);
     });
 }
 
