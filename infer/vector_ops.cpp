@@ -1,100 +1,16 @@
 // SPDX-License-Identifier: MIT
-// vector_ops.cpp — the persistent worker pool, blocked per-channel reductions and elementwise
-// updates (vector_ops.h).
+// vector_ops.cpp — tasks on raster/'s kept worker threads, blocked per-channel reductions and
+// elementwise updates (vector_ops.h).
 #include "infer/vector_ops.h"
 
-#include <condition_variable>
 #include <cstddef>
-#include <mutex>
-#include <thread>
+
+#include "raster/worker_pool.h"
 
 namespace pem::infer {
 namespace {
 
 thread_local bool tInsideTask = false;
-
-// Threads started once and kept: each RunTasks call publishes (task, context, count) as a new
-// generation; workers and the caller claim task indices until none is left.
-class WorkerPool {
-  public:
-    ~WorkerPool() {
-        {
-            std::lock_guard<std::mutex> lock(mutex_);
-            stop_ = true;
-        }
-        wake_.notify_all();
-        for (std::thread& t : workers_) t.join();
-    }
-
-    // False when another thread is using the pool (the caller then runs the tasks inline).
-    bool TryRun(int tasks, void (*task)(const void*, int), const void* context) {
-        std::unique_lock<std::mutex> owner(owner_, std::try_to_lock);
-        if (!owner.owns_lock()) return false;
-        {
-            std::lock_guard<std::mutex> lock(mutex_);
-            while (static_cast<int>(workers_.size()) < tasks - 1)
-                workers_.emplace_back([this] { WorkerLoop(); });
-            task_ = task;
-            context_ = context;
-            tasks_ = tasks;
-            next_ = 1;
-            remaining_ = tasks - 1;
-            ++generation_;
-        }
-        wake_.notify_all();
-        tInsideTask = true;
-        task(context, 0);
-        ClaimAndRun();
-        tInsideTask = false;
-        std::unique_lock<std::mutex> lock(mutex_);
-        done_.wait(lock, [this] { return remaining_ == 0; });
-        return true;
-    }
-
-  private:
-    // Runs unclaimed tasks of the current generation; called with mutex_ not held.
-    void ClaimAndRun() {
-        std::unique_lock<std::mutex> lock(mutex_);
-        while (next_ < tasks_) {
-            const int k = next_++;
-            void (*task)(const void*, int) = task_;
-            const void* context = context_;
-            lock.unlock();
-            task(context, k);
-            lock.lock();
-            if (--remaining_ == 0) done_.notify_all();
-        }
-    }
-
-    void WorkerLoop() {
-        tInsideTask = true;
-        uint64_t seen = 0;
-        while (true) {
-            {
-                std::unique_lock<std::mutex> lock(mutex_);
-                wake_.wait(lock, [&] { return stop_ || generation_ != seen; });
-                if (stop_) return;
-                seen = generation_;
-            }
-            ClaimAndRun();
-        }
-    }
-
-    std::mutex owner_;  // one RunTasks at a time
-    std::mutex mutex_;
-    std::condition_variable wake_, done_;
-    std::vector<std::thread> workers_;
-    void (*task_)(const void*, int) = nullptr;
-    const void* context_ = nullptr;
-    int tasks_ = 0, next_ = 0, remaining_ = 0;
-    uint64_t generation_ = 0;
-    bool stop_ = false;
-};
-
-WorkerPool& Pool() {
-    static WorkerPool pool;
-    return pool;
-}
 
 // Sum f(k) per channel over [0, n): block partials in parallel, then the partials in order.
 template <class Term>
@@ -131,8 +47,17 @@ void ForEachEntry(size_t n, const F& f) {
 }  // namespace
 
 void RunTasks(int tasks, void (*task)(const void* context, int k), const void* context) {
-    if (tasks <= 1 || tInsideTask || !Pool().TryRun(tasks, task, context))
+    if (tasks <= 1 || tInsideTask) {
         for (int k = 0; k < tasks; ++k) task(context, k);
+        return;
+    }
+    raster::RunOnWorkers(tasks, [&](int k) {
+        struct Inside {  // calls from inside the task run inline
+            Inside() { tInsideTask = true; }
+            ~Inside() { tInsideTask = false; }
+        } inside;
+        task(context, k);
+    });
 }
 
 Channels Dot(const Vector& a, const Vector& b, int threads) {

@@ -9,8 +9,9 @@
 //  - Reductions (Dot, SquaredNorm) sum fixed blocks of kReduceBlock entries sequentially, then
 //    the block partials in block order: the order never depends on the thread count.
 //  - ParallelRanges splits [0, n) into contiguous ranges, one per thread; bodies must write
-//    disjoint outputs (elementwise updates, rows of a sparse product). The threads come from one
-//    persistent pool (a solver makes thousands of these calls: no thread start-up per call).
+//    disjoint outputs (elementwise updates, rows of a sparse product). The threads are
+//    raster/'s kept workers (worker_pool.h; a solver makes thousands of these calls: no thread
+//    start-up per call).
 // Not here: sparse matrices (sparse.h), solvers (solver.h).
 #pragma once
 
@@ -27,9 +28,9 @@ constexpr int kChannels = 4;
 using Channels = std::array<double, kChannels>;
 constexpr int64_t kReduceBlock = 4096;  // a multiple of kChannels
 
-// Runs task(context, k) for k in [0, tasks) on the persistent worker pool (vector_ops.cpp):
-// the calling thread takes k = 0, pool threads the others; returns when all are done. Calls
-// made from inside a task, or while another thread uses the pool, run their tasks inline.
+// Runs task(context, k) for k in [0, tasks) on raster::RunOnWorkers's kept threads: the calling
+// thread takes k = 0, helpers the others; returns when all are done. Calls made from inside a
+// task run their tasks inline.
 void RunTasks(int tasks, void (*task)(const void* context, int k), const void* context);
 
 // Runs body(begin, end) over [0, n) split into at most `threads` contiguous ranges (each at
