@@ -18,6 +18,8 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "raster/cube_lookup.h"
+
 namespace pem::infer {
 namespace {
 
@@ -25,23 +27,11 @@ constexpr const char* kLevelsAttribute = "pemrefLevels";
 constexpr const char* kChannelNames[kChannels] = {"R", "G", "B", "A"};
 constexpr int kTileSize = 32;
 
-// GL face table (GL 4.6 table 8.19) inverted: the direction of face coordinates (s, t).
+// The direction of face coordinates (s, t) (raster::FaceDirection, GL 4.6 table 8.19).
 Imath::V3f GlDirection(int face, double s, double t) {
-    const float sc = static_cast<float>(2.0 * s - 1.0), tc = static_cast<float>(2.0 * t - 1.0);
-    switch (face) {
-        case 0:
-            return {1.0f, -tc, -sc};
-        case 1:
-            return {-1.0f, -tc, sc};
-        case 2:
-            return {sc, 1.0f, tc};
-        case 3:
-            return {sc, -1.0f, -tc};
-        case 4:
-            return {sc, -tc, 1.0f};
-        default:
-            return {-sc, -tc, -1.0f};
-    }
+    const raster::Vec3f d = raster::FaceDirection(face, static_cast<float>(2.0 * s - 1.0),
+                                                  static_cast<float>(2.0 * t - 1.0));
+    return {d[0], d[1], d[2]};
 }
 
 // One of the 8 symmetries of the square: (i, j) -> (x, y) inside an n x n face.

@@ -29,4 +29,23 @@ CubeCoord CubeLookup(const Vec3f& dir, const Vec3f& ddx, const Vec3f& ddy, bool 
 // The major-axis test alone (for tests and the exact-LOD variant).
 int CubeFace(const Vec3f& dir);
 
+// GL table 8.19 inverted: a direction on face `face` whose face coordinates are sc = 2s - 1 and
+// tc = 2t - 1 (not normalised).
+inline Vec3f FaceDirection(int face, float sc, float tc) {
+    switch (face) {
+        case 0:
+            return {1.0f, -tc, -sc};
+        case 1:
+            return {-1.0f, -tc, sc};
+        case 2:
+            return {sc, 1.0f, tc};
+        case 3:
+            return {sc, -1.0f, -tc};
+        case 4:
+            return {sc, -tc, 1.0f};
+        default:
+            return {-sc, -tc, -1.0f};
+    }
+}
+
 }  // namespace pem::raster

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <map>
 
+#include "raster/cube_lookup.h"
 #include "raster/render.h"
 #include "runtime/convex_hull.h"
 #include "runtime/lens_paths.h"
@@ -29,23 +30,10 @@ double Since(Clock::time_point t0) {
     return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
-// GL face table inverted: the direction of face coordinates (s, t) in [0, 1].
+// The direction of face coordinates (s, t) in [0, 1] (raster::FaceDirection).
 glm::vec3 FaceDirection(int face, float s, float t) {
-    const float sc = 2.0f * s - 1.0f, tc = 2.0f * t - 1.0f;
-    switch (face) {
-        case 0:
-            return {1.0f, -tc, -sc};
-        case 1:
-            return {-1.0f, -tc, sc};
-        case 2:
-            return {sc, 1.0f, tc};
-        case 3:
-            return {sc, -1.0f, -tc};
-        case 4:
-            return {sc, -tc, 1.0f};
-        default:
-            return {-sc, -tc, -1.0f};
-    }
+    const raster::Vec3f d = raster::FaceDirection(face, 2.0f * s - 1.0f, 2.0f * t - 1.0f);
+    return {d[0], d[1], d[2]};
 }
 
 raster::BlendState PremultipliedOver() {
