@@ -5,10 +5,12 @@
 #include <algorithm>
 #include <cstdio>
 #include <nlohmann/json.hpp>
+#include <tuple>
 #include <vector>
 
 #include "trace/render.h"
 #include "viewer_tty/cmd_infer.h"
+#include "viewer_tty/cmd_trace.h"
 #include "viewer_tty/display.h"
 #include "viewer_tty/input_error.h"
 #include "viewer_tty/png_io.h"
@@ -100,12 +102,7 @@ int RunRenderCommand() {
         throw InputError(a.out, "output must end in .png or .exr");
     runtime::Renderer renderer(runtime::LoadPemSet(a.pemDir), a.threads);
     int w = renderer.pems().width, h = renderer.pems().height;
-    if (!a.size.empty()) {
-        char x = 0, extra = 0;
-        if (std::sscanf(a.size.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || x != 'x' || w < 1 ||
-            h < 1 || w > 16384 || h > 16384)
-            throw InputError("--size " + a.size, "expected WxH, e.g. 640x480");
-    }
+    if (!a.size.empty()) std::tie(w, h) = ParseSize(a.size);
     const raster::Camera camera = ParseViewSpec(renderer, a.view, w, h);
     runtime::RenderSettings s;
     s.method = ParseMethod(a.method);

@@ -3,14 +3,12 @@
 // (cmd_stability.h). The suite itself is stability.h.
 #include "viewer_tty/cmd_stability.h"
 
-#include <unistd.h>
-
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "viewer_tty/cmd_infer.h"
 #include "viewer_tty/input_error.h"
 #include "viewer_tty/stability.h"
 
@@ -46,19 +44,6 @@ json CaseJson(const StabilityCase& c) {
             {"condition", Number(c.condition)},
             {"seconds", c.seconds},
             {"detail", c.detail}};
-}
-
-void WriteJson(const std::string& path, const json& j) {
-    const std::string tmp = path + ".tmp." + std::to_string(getpid());
-    {
-        std::ofstream f(tmp);
-        f << j.dump(2) << "\n";
-        if (!f) {
-            std::remove(tmp.c_str());
-            throw InputError(path, "cannot write");
-        }
-    }
-    if (std::rename(tmp.c_str(), path.c_str()) != 0) throw InputError(path, "cannot rename");
 }
 
 // A figure for the table: "-" when not applicable (NaN).
@@ -109,7 +94,8 @@ int RunStabilityCommand() {
     std::printf("%zu cases, %d failed, %.2f s%s\n", cases.size(), failed, seconds,
                 a.data.empty() ? " (no --data: tests/data/bad_scenes not read)" : "");
     if (!a.json.empty())
-        WriteJson(a.json, {{"cases", all}, {"failed", failed}, {"seconds", seconds}});
+        WriteTextAtomic(
+            a.json, json{{"cases", all}, {"failed", failed}, {"seconds", seconds}}.dump(2) + "\n");
     return failed == 0 ? 0 : 1;
 }
 

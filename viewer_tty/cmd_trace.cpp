@@ -31,16 +31,6 @@ TraceJob& Args() {
     return args;
 }
 
-// "WxH" → (W, H), both in [1, 16384].
-std::pair<int, int> ParseSize(const std::string& text) {
-    int w = 0, h = 0;
-    char x = 0, extra = 0;
-    if (std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || x != 'x' || w < 1 ||
-        h < 1 || w > 16384 || h > 16384)
-        throw InputError("--size " + text, "expected WxH, e.g. 640x480");
-    return {w, h};
-}
-
 std::vector<raster::Camera> ParseViews(const trace::Scene& scene, const std::string& spec, int w,
                                        int h) {
     if (!scene.camera) throw InputError(scene.path, "no camera node (needed by --views)");
@@ -184,6 +174,15 @@ void WriteJson(const std::string& path, const json& j) {
 }
 
 }  // namespace
+
+std::pair<int, int> ParseSize(const std::string& text) {
+    int w = 0, h = 0;
+    char x = 0, extra = 0;
+    if (std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || x != 'x' || w < 1 ||
+        h < 1 || w > 16384 || h > 16384)
+        throw InputError("--size " + text, "expected WxH, e.g. 640x480");
+    return {w, h};
+}
 
 void AddTraceCommand(CLI::App& app) {
     TraceJob& a = Args();

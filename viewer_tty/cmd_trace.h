@@ -13,6 +13,7 @@
 
 #include <CLI/CLI.hpp>
 #include <string>
+#include <utility>
 
 namespace pem::cli {
 
@@ -23,6 +24,9 @@ struct TraceJob {
     float exposure = 1.0f;
     bool quiet = false, framesOnly = false;
 };
+
+// "WxH" → (W, H), both in [1, 16384] (InputError naming --size otherwise).
+std::pair<int, int> ParseSize(const std::string& text);
 
 // Runs a trace job (also used by `pemref bake`); trace.json is written last.
 int RunTraceJob(const TraceJob& job);
