@@ -74,11 +74,8 @@ std::vector<glm::vec3> ShellCoords(const std::vector<ExitRay>& exits, const trac
                                    const glm::vec3& emOrigin, int threads) {
     std::vector<glm::vec3> coords(exits.size());
     const glm::dvec3 o(emOrigin);
-    constexpr size_t kChunk = 4096;
-    const size_t chunks = (exits.size() + kChunk - 1) / kChunk;
-    trace::ParallelRows(static_cast<int>(chunks), threads, [&](int c) {
-        const size_t end = std::min(exits.size(), (static_cast<size_t>(c) + 1) * kChunk);
-        for (size_t v = static_cast<size_t>(c) * kChunk; v < end; ++v) {
+    ForChunks(exits.size(), threads, [&](size_t first, size_t last) {
+        for (size_t v = first; v < last; ++v) {
             const ExitRay& e = exits[v];
             if (!e.valid) {
                 coords[v] = glm::vec3(0.0f, 0.0f, 1.0f);
