@@ -21,16 +21,16 @@ echo "uptime:$(uptime)"
 echo "machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs)"
 if [ -z "$trace" ]; then
     trace=$tmp/trace
-    "$build/viewer_tty/pemref" trace "$scene" --out "$trace" --size 640x480 --spp 3 --views camera \
+    "$build/bin/pemref" trace "$scene" --out "$trace" --size 640x480 --spp 3 --views camera \
         --threads "$threads" --quiet
 fi
 for r in $(seq 1 "$rounds"); do
     s=$(date +%s.%N)
-    "$build/viewer_tty/pemref" infer "$trace" --out "$tmp/pem_$r" --res "$res" --views 0 \
+    "$build/bin/pemref" infer "$trace" --out "$tmp/pem_$r" --res "$res" --views 0 \
         --threads "$threads" --quiet
     echo "$(echo "$(date +%s.%N) - $s" | bc)" > "$tmp/pem_$r/wall.txt"
 done
 # One more run that exports the systems (not timed: the Matrix Market text is slow to write).
-"$build/viewer_tty/pemref" infer "$trace" --out "$tmp/pem_x" --res "$res" --views 0 \
+"$build/bin/pemref" infer "$trace" --out "$tmp/pem_x" --res "$res" --views 0 \
     --threads "$threads" --quiet --export-system "$tmp/sys"
 "$py" bench/infer_bench.py "$tmp" "$rounds"

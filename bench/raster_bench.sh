@@ -11,11 +11,11 @@ build=${1:-build}; rounds=${2:-7}; threads=${THREADS:-2}
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
 "$build/tests/gen_cases" "$tmp" --bench-only >/dev/null
 echo "machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs); load:$(uptime | sed 's/.*average://')"
-echo "llvmpipe: $(LIBGL_ALWAYS_SOFTWARE=1 "$build/viewer_tty/pemref-gl" "$tmp/bench.json" --info 2>&1 >/dev/null | head -1)"
+echo "llvmpipe: $(LIBGL_ALWAYS_SOFTWARE=1 "$build/bin/pemref-gl" "$tmp/bench.json" --info 2>&1 >/dev/null | head -1)"
 ours=(); gl=()
 for ((r = 0; r < rounds; ++r)); do
-  o=$("$build/viewer_tty/pemref" raster "$tmp/bench.json" --threads "$threads" --repeat 5)
-  g=$(LIBGL_ALWAYS_SOFTWARE=1 LP_NUM_THREADS=$threads "$build/viewer_tty/pemref-gl" "$tmp/bench.json" --repeat 5)
+  o=$("$build/bin/pemref" raster "$tmp/bench.json" --threads "$threads" --repeat 5)
+  g=$(LIBGL_ALWAYS_SOFTWARE=1 LP_NUM_THREADS=$threads "$build/bin/pemref-gl" "$tmp/bench.json" --repeat 5)
   [ "$(echo "$o" | head -1)" == "$(echo "$g" | head -1)" ] || { echo "frames differ!"; exit 1; }
   ours+=("$(echo "$o" | awk '/frame_ms_median/{print $2}')")
   gl+=("$(echo "$g" | awk '/frame_ms_median/{print $2}')")

@@ -15,7 +15,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 pem=${1:-out/demo/pem}; rounds=${2:-5}; build=${3:-build}; threads=${THREADS:-2}
-bin="$build/viewer_tty/pemref"
+bin="$build/bin/pemref"
 [ -f "$pem/manifest.json" ] || { echo "render_bench: $pem: no PEMs (run the README's first command)" >&2; exit 2; }
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
 view=orbit:5:0:1

@@ -19,8 +19,8 @@
 #include <string>
 #include <vector>
 
+#include "base/parallel.h"
 #include "trace/embree_scene.h"
-#include "trace/parallel.h"
 #include "trace/render.h"
 #include "trace/scene.h"
 #include "trace/tracer.h"
@@ -81,7 +81,7 @@ double OursMrays(const trace::EmbreeScene& scene, const std::vector<raster::Ray>
     std::vector<size_t> hits(chunks, 0);
     for (int r = 0; r < repeats; ++r) {
         const auto t0 = Clock::now();
-        trace::ParallelRows(chunks, threads, [&](int c) {
+        base::ParallelFor(chunks, threads, [&](int c) {
             const size_t lo = std::min(rays.size(), static_cast<size_t>(c) * per);
             const size_t hi = std::min(rays.size(), lo + per);
             for (size_t i = lo; i < hi; ++i)

@@ -13,7 +13,7 @@ threads=${THREADS:-2}
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
 echo "machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs); load:$(uptime | sed 's/.*average://')"
 "$build/tests/trace/trace_bench" "$scene" 640x480 3 "$threads" "$rounds" all
-"$build/viewer_tty/pemref" trace "$scene" --out "$tmp" --threads "$threads" --frames-only --quiet
+"$build/bin/pemref" trace "$scene" --out "$tmp" --threads "$threads" --frames-only --quiet
 python3 - "$tmp/trace.json" <<'PY'
 import json, sys
 j = json.load(open(sys.argv[1])); v = j["views"][0]; e = v["greedy_vs_reference"]

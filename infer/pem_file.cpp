@@ -15,9 +15,9 @@
 
 #include <array>
 #include <cmath>
-#include <filesystem>
 #include <stdexcept>
 
+#include "base/atomic_file.h"
 #include "raster/cube_lookup.h"
 
 namespace pem::infer {
@@ -186,15 +186,7 @@ ExrPixel ExrPixelOf(int face, int i, int j, int n) {
 
 void WriteCubeMapExr(const CubeMapF& map, const std::string& path, int threads) {
     CheckWritable(map);
-    const std::string tmp = path + ".tmp";
-    try {
-        WriteExr(map, tmp, threads);
-        std::filesystem::rename(tmp, path);
-    } catch (...) {
-        std::error_code ignored;
-        std::filesystem::remove(tmp, ignored);
-        throw;
-    }
+    base::WriteAtomically(path, [&](const std::string& tmp) { WriteExr(map, tmp, threads); });
 }
 
 ExrLevelImage ReadExrLevel(const std::string& path, int level) {

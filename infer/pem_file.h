@@ -2,7 +2,7 @@
 // pem_file.h — the inferred environment map on disk: a tiled, mip-mapped OpenEXR cube map
 // (ImfEnvmap cube layout, float RGBA), readable by OpenEXR's tools (exrheader, exrenvmap).
 //
-// Layout (deps.md §5): level 0 is N wide by 6N tall, the faces stacked top to bottom in the
+// Layout (docs/deps.md §5): level 0 is N wide by 6N tall, the faces stacked top to bottom in the
 // order +X, -X, +Y, -Y, +Z, -Z, each face oriented as ImfEnvmap.h draws it. A texel keeps its
 // direction: our texel (face, i, j) goes to the EXR pixel whose CubeMap::direction is the
 // direction of that texel's centre in GL's face table (the per-face flips/transposition are
@@ -10,8 +10,8 @@
 // has floor(log2(6N)) + 1 levels; every level is written. Levels that are cube maps but absent
 // from the map, and the degenerate tail levels (1 x 3, 1 x 1: not cube maps), hold the mean of
 // the map's coarsest level. The attribute "pemrefLevels" records how many levels are real; the
-// reader returns exactly those (all cube levels for files without it). Writing goes to
-// "<path>.tmp" and renames it over <path>, so readers never see a half-written file.
+// reader returns exactly those (all cube levels for files without it). The file appears
+// atomically (base/atomic_file.h), so readers never see a half-written file.
 // Not here: the 8-bit copy (cube_map.h ToTexture8; PNG/case files are viewer_tty's).
 #pragma once
 

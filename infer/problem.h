@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// problem.h — the stacked inference system for one cube map of a frame (method.md §5):
+// problem.h — the stacked inference system for one cube map of a frame (docs/method.md §5):
 //
 //   minimise  sum_rows w (A x - b)^2 + lambda_s |L x|^2 + lambda_p |P x|^2 + lambda_0 |x - xbar|^2
 //   as the least-squares system K x ~ h,  K = [W^1/2 A; sqrt(lambda_s) L; sqrt(lambda_p) P;

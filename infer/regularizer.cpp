@@ -8,7 +8,7 @@
 namespace pem::infer {
 namespace {
 
-// The adjacency table of hardware-model.md §2.3 (llvmpipe's lp_build_cube_new_coords): where a
+// The adjacency table of docs/hardware-model.md §2.3 (llvmpipe's lp_build_cube_new_coords): where a
 // texel that falls off an edge of `face` lands. m = n - 1; (i, j) is the texel that fell off,
 // with the coordinate along the edge still in range.
 FaceTexel CrossSeam(int face, Edge e, int i, int j, int m) {

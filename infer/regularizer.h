@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: MIT
 // regularizer.h — the regularizer rows of the inference system for one cube map with every MIP
-// level as unknowns (method.md §5):
+// level as unknowns (docs/method.md §5):
 //  (a) smoothness L: x(a) - x(b) for every undirected pair of neighbouring texels within a level,
-//      across cube seams with the sampler's adjacency (hardware-model.md §2.3): inside a face each
-//      texel with its right (i + 1) and down (j + 1) neighbour; across the 12 seams every border
-//      texel with the texel beyond its edge (right/down alone would miss seams such as +Y left
-//      / -X top), each undirected pair once: 12 n^2 pairs per level;
+//      across cube seams with the sampler's adjacency (docs/hardware-model.md §2.3): inside a face
+//      each texel with its right (i + 1) and down (j + 1) neighbour; across the 12 seams every
+//      border texel with the texel beyond its edge (right/down alone would miss seams such as +Y
+//      left / -X top), each undirected pair once: 12 n^2 pairs per level;
 //  (b) pyramid coupling P: x(coarse) - mean of its four children at the next finer level;
 //  (c) prior I: x itself (the right-hand side holds the constant prior value).
 // Every row is repeated per colour channel: row 4 * k + c acts on columns 4 * texel + c.

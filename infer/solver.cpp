@@ -12,7 +12,11 @@
 #include <fstream>
 #include <functional>
 #include <ostream>
+#include <sstream>
 #include <stdexcept>
+
+#include "base/atomic_file.h"
+#include "base/parallel.h"
 
 namespace pem::infer {
 namespace {
@@ -242,15 +246,14 @@ Channels SumBlocks(const std::vector<Channels>& partial) {
     return total;
 }
 
-// uRaw <- mask (K vd - alpha (uRaw invBeta)); returns |uRaw|^2 per channel (blocked order).
-Channels FusedForward(const CsrMatrix& q, const Vector& vd, const Channels& invBeta,
-                      const Channels& alpha, const Channels& mask, Vector* uRaw,
-                      std::vector<Channels>* partial, int threads) {
+// Over the rows of q in blocks of kQuadsPerBlock: s = Σ_k val_k · in(col_k, c) per channel, then
+// out(r, s) stores row r and returns its squared values; returns their sum (blocked order).
+template <class In, class Out>
+Channels BlockedRowProducts(const CsrMatrix& q, const In& in, const Out& out,
+                            std::vector<Channels>* partial, int threads) {
     const int64_t blocks = (q.rows + kQuadsPerBlock - 1) / kQuadsPerBlock;
     partial->assign(static_cast<size_t>(blocks), Channels{});
-    const double* xp = vd.data();
-    double* up = uRaw->data();
-    ParallelRanges(blocks, threads, 2, [&](int64_t b0, int64_t b1) {
+    base::ForRanges(blocks, threads, 2, [&](int64_t b0, int64_t b1) {
         for (int64_t b = b0; b < b1; ++b) {
             Channels acc{};
             const int64_t end = std::min(q.rows, (b + 1) * kQuadsPerBlock);
@@ -259,16 +262,11 @@ Channels FusedForward(const CsrMatrix& q, const Vector& vd, const Channels& invB
                 const int64_t e = q.rowPtr[static_cast<size_t>(r) + 1];
                 for (int64_t k = q.rowPtr[static_cast<size_t>(r)]; k < e; ++k) {
                     const double v = q.val[static_cast<size_t>(k)];
-                    const double* xt = xp + size_t{kChannels} * q.col[static_cast<size_t>(k)];
-                    for (size_t c = 0; c < kChannels; ++c) s[c] += v * xt[c];
+                    const size_t t = size_t{kChannels} * q.col[static_cast<size_t>(k)];
+                    for (size_t c = 0; c < kChannels; ++c) s[c] += v * in(t, c);
                 }
-                double* ur = up + kChannels * r;
-                for (size_t c = 0; c < kChannels; ++c) {
-                    const double prev = (ur[c] * invBeta[c]) * alpha[c];
-                    const double next = (s[c] - prev) * mask[c];
-                    ur[c] = next;
-                    acc[c] += next * next;
-                }
+                const Channels sq = out(r, s);
+                for (size_t c = 0; c < kChannels; ++c) acc[c] += sq[c];
             }
             (*partial)[static_cast<size_t>(b)] = acc;
         }
@@ -276,38 +274,48 @@ Channels FusedForward(const CsrMatrix& q, const Vector& vd, const Channels& invB
     return SumBlocks(*partial);
 }
 
+// uRaw <- mask (K vd - alpha (uRaw invBeta)); returns |uRaw|^2 per channel (blocked order).
+Channels FusedForward(const CsrMatrix& q, const Vector& vd, const Channels& invBeta,
+                      const Channels& alpha, const Channels& mask, Vector* uRaw,
+                      std::vector<Channels>* partial, int threads) {
+    const double* xp = vd.data();
+    double* up = uRaw->data();
+    return BlockedRowProducts(
+        q, [&](size_t t, size_t c) { return xp[t + c]; },
+        [&](int64_t r, const double* s) {
+            Channels sq{};
+            double* ur = up + kChannels * r;
+            for (size_t c = 0; c < kChannels; ++c) {
+                const double prev = (ur[c] * invBeta[c]) * alpha[c];
+                const double next = (s[c] - prev) * mask[c];
+                ur[c] = next;
+                sq[c] = next * next;
+            }
+            return sq;
+        },
+        partial, threads);
+}
+
 // vRaw <- mask (dm .* (K^T (uRaw invBeta)) - beta v), in place over v; returns |vRaw|^2.
 Channels FusedTranspose(const CsrMatrix& qt, const Vector& uRaw, const Channels& invBeta,
                         const Vector& dm, const Channels& beta, const Channels& mask, Vector* v,
                         std::vector<Channels>* partial, int threads) {
-    const int64_t blocks = (qt.rows + kQuadsPerBlock - 1) / kQuadsPerBlock;
-    partial->assign(static_cast<size_t>(blocks), Channels{});
     const double* up = uRaw.data();
     double* vp = v->data();
-    ParallelRanges(blocks, threads, 2, [&](int64_t b0, int64_t b1) {
-        for (int64_t b = b0; b < b1; ++b) {
-            Channels acc{};
-            const int64_t end = std::min(qt.rows, (b + 1) * kQuadsPerBlock);
-            for (int64_t j = b * kQuadsPerBlock; j < end; ++j) {
-                double s[kChannels] = {0.0, 0.0, 0.0, 0.0};
-                const int64_t e = qt.rowPtr[static_cast<size_t>(j) + 1];
-                for (int64_t k = qt.rowPtr[static_cast<size_t>(j)]; k < e; ++k) {
-                    const double w = qt.val[static_cast<size_t>(k)];
-                    const double* ut = up + size_t{kChannels} * qt.col[static_cast<size_t>(k)];
-                    for (size_t c = 0; c < kChannels; ++c) s[c] += w * (ut[c] * invBeta[c]);
-                }
-                const size_t base = static_cast<size_t>(kChannels * j);
-                for (size_t c = 0; c < kChannels; ++c) {
-                    const double ktu = dm[base + c] * s[c];
-                    const double next = (ktu - vp[base + c] * beta[c]) * mask[c];
-                    vp[base + c] = next;
-                    acc[c] += next * next;
-                }
+    return BlockedRowProducts(
+        qt, [&](size_t t, size_t c) { return up[t + c] * invBeta[c]; },
+        [&](int64_t j, const double* s) {
+            Channels sq{};
+            const size_t base = static_cast<size_t>(kChannels * j);
+            for (size_t c = 0; c < kChannels; ++c) {
+                const double ktu = dm[base + c] * s[c];
+                const double next = (ktu - vp[base + c] * beta[c]) * mask[c];
+                vp[base + c] = next;
+                sq[c] = next * next;
             }
-            (*partial)[static_cast<size_t>(b)] = acc;
-        }
-    });
-    return SumBlocks(*partial);
+            return sq;
+        },
+        partial, threads);
 }
 
 // v = vRaw invAlpha, vd = dm .* v, hbar = h + cHbar hbar, y += cY hbar, h = v + cH h;
@@ -321,7 +329,7 @@ Channels FusedUpdate(const Channels& invAlpha, const Vector& dm, const Channels&
     const int64_t n = static_cast<int64_t>(f->v.size());
     const int64_t blocks = (n + kReduceBlock - 1) / kReduceBlock;
     partial->assign(static_cast<size_t>(blocks), Channels{});
-    ParallelRanges(blocks, threads, 4, [&](int64_t b0, int64_t b1) {
+    base::ForRanges(blocks, threads, 4, [&](int64_t b0, int64_t b1) {
         for (int64_t b = b0; b < b1; ++b) {
             Channels acc{};
             const size_t end = static_cast<size_t>(std::min(n, (b + 1) * kReduceBlock));
@@ -681,9 +689,9 @@ void WriteLogCsv(const std::vector<IterationRecord>& log, std::ostream& out) {
 }
 
 void WriteLogCsv(const std::vector<IterationRecord>& log, const std::string& path) {
-    std::ofstream out(path);
-    if (!out) throw std::runtime_error("WriteLogCsv: cannot open " + path);
+    std::ostringstream out;
     WriteLogCsv(log, out);
+    base::WriteTextAtomic(path, out.str());
 }
 
 }  // namespace pem::infer

@@ -10,7 +10,7 @@
 // SpMV. Every colour channel runs its own recurrence (the system is channel-diagonal), all four
 // sharing each product with K and K^T.
 //  - Column scaling: y = D^-1 x with D_j = 1 / sqrt(max(|k_j|^2, floor)), floor = columnFloor x
-//    the median of the non-zero squared column norms (inference.md: an unfloored Jacobi scale
+//    the median of the non-zero squared column norms (docs/inference.md: an unfloored Jacobi scale
 //    sends texels seen with tiny weights to +-1e5 in the first iterations).
 //  - Stopping, per channel, on the scaled system: |(KD)^T r| <= atol |KD| |r| (least squares) or
 //    |r| <= atol |h| (consistent), on maxIterations, or when the masked image RMSE reaches
@@ -68,7 +68,7 @@ struct SolveOptions {
     int logEvery = 5;  // 0: log at restarts only
 };
 
-// One line of the convergence log (inference.md §4.2).
+// One line of the convergence log (docs/inference.md §4.2).
 struct IterationRecord {
     int iteration = 0;
     double seconds = 0.0;           // since the start of the solve

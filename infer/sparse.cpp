@@ -4,6 +4,8 @@
 
 #include <stdexcept>
 
+#include "base/parallel.h"
+
 namespace pem::infer {
 
 void CsrMatrix::AddRow(const std::vector<uint32_t>& rowCols, const std::vector<double>& rowVals) {
@@ -47,7 +49,7 @@ CsrMatrix Transpose(const CsrMatrix& a) {
 void Multiply(const CsrMatrix& a, const Vector& x, Vector* y, int threads) {
     if (static_cast<int64_t>(x.size()) != a.cols) throw std::invalid_argument("Multiply: size");
     y->resize(static_cast<size_t>(a.rows));
-    ParallelRanges(a.rows, threads, 2048, [&](int64_t r0, int64_t r1) {
+    base::ForRanges(a.rows, threads, 2048, [&](int64_t r0, int64_t r1) {
         for (int64_t r = r0; r < r1; ++r) {
             double s = 0.0;
             const int64_t end = a.rowPtr[static_cast<size_t>(r) + 1];
@@ -107,7 +109,7 @@ CsrMatrix StackColumns(const std::vector<const CsrMatrix*>& blocks) {
 
 Vector ColumnSquaredNorms(const CsrMatrix& transpose, int threads) {
     Vector out(static_cast<size_t>(transpose.rows), 0.0);
-    ParallelRanges(transpose.rows, threads, 4096, [&](int64_t j0, int64_t j1) {
+    base::ForRanges(transpose.rows, threads, 4096, [&](int64_t j0, int64_t j1) {
         for (int64_t j = j0; j < j1; ++j) {
             double s = 0.0;
             for (int64_t k = transpose.rowPtr[static_cast<size_t>(j)];
@@ -165,7 +167,7 @@ void MultiplyQuads(const CsrMatrix& q, const Vector& x, Vector* y, int threads) 
     y->resize(static_cast<size_t>(kChannels * q.rows));
     const double* xp = x.data();
     double* yp = y->data();
-    ParallelRanges(q.rows, threads, 512, [&](int64_t r0, int64_t r1) {
+    base::ForRanges(q.rows, threads, 512, [&](int64_t r0, int64_t r1) {
         for (int64_t r = r0; r < r1; ++r) {
             double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0;
             const int64_t end = q.rowPtr[static_cast<size_t>(r) + 1];

@@ -1,23 +1,21 @@
 // SPDX-License-Identifier: MIT
-// vector_ops.cpp — tasks on raster/'s kept worker threads, blocked per-channel reductions and
+// vector_ops.cpp — blocked per-channel reductions and
 // elementwise updates (vector_ops.h).
 #include "infer/vector_ops.h"
 
 #include <cstddef>
 
-#include "raster/worker_pool.h"
+#include "base/parallel.h"
 
 namespace pem::infer {
 namespace {
-
-thread_local bool tInsideTask = false;
 
 // Sum f(k) per channel over [0, n): block partials in parallel, then the partials in order.
 template <class Term>
 Channels BlockedSum(int64_t n, int threads, const Term& term) {
     const int64_t blocks = (n + kReduceBlock - 1) / kReduceBlock;
     std::vector<Channels> partial(static_cast<size_t>(blocks), Channels{});
-    ParallelRanges(blocks, threads, 4, [&](int64_t b0, int64_t b1) {
+    base::ForRanges(blocks, threads, 4, [&](int64_t b0, int64_t b1) {
         for (int64_t b = b0; b < b1; ++b) {
             Channels s{};
             const int64_t end = std::min(n, (b + 1) * kReduceBlock);
@@ -45,20 +43,6 @@ void ForEachEntry(size_t n, const F& f) {
 }
 
 }  // namespace
-
-void RunTasks(int tasks, void (*task)(const void* context, int k), const void* context) {
-    if (tasks <= 1 || tInsideTask) {
-        for (int k = 0; k < tasks; ++k) task(context, k);
-        return;
-    }
-    raster::RunOnWorkers(tasks, [&](int k) {
-        struct Inside {  // calls from inside the task run inline
-            Inside() { tInsideTask = true; }
-            ~Inside() { tInsideTask = false; }
-        } inside;
-        task(context, k);
-    });
-}
 
 Channels Dot(const Vector& a, const Vector& b, int threads) {
     return BlockedSum(static_cast<int64_t>(a.size()), threads, [&](int64_t k) {

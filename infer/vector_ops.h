@@ -8,10 +8,8 @@
 //    recurrence per channel, so scalars come as `Channels` (one value per channel).
 //  - Reductions (Dot, SquaredNorm) sum fixed blocks of kReduceBlock entries sequentially, then
 //    the block partials in block order: the order never depends on the thread count.
-//  - ParallelRanges splits [0, n) into contiguous ranges, one per thread; bodies must write
-//    disjoint outputs (elementwise updates, rows of a sparse product). The threads are
-//    raster/'s kept workers (worker_pool.h; a solver makes thousands of these calls: no thread
-//    start-up per call).
+//  - Parallel loops are base::ForRanges (base/parallel.h): contiguous ranges, one per thread;
+//    bodies write disjoint outputs (elementwise updates, rows of a sparse product).
 // Not here: sparse matrices (sparse.h), solvers (solver.h).
 #pragma once
 
@@ -27,35 +25,6 @@ using Vector = std::vector<double>;
 constexpr int kChannels = 4;
 using Channels = std::array<double, kChannels>;
 constexpr int64_t kReduceBlock = 4096;  // a multiple of kChannels
-
-// Runs task(context, k) for k in [0, tasks) on raster::RunOnWorkers's kept threads: the calling
-// thread takes k = 0, helpers the others; returns when all are done. Calls made from inside a
-// task run their tasks inline.
-void RunTasks(int tasks, void (*task)(const void* context, int k), const void* context);
-
-// Runs body(begin, end) over [0, n) split into at most `threads` contiguous ranges (each at
-// least minPerThread long); the calling thread takes the first range. The split depends only
-// on (n, threads, minPerThread), never on which thread runs a range.
-template <class Body>
-void ParallelRanges(int64_t n, int threads, int64_t minPerThread, const Body& body) {
-    const int64_t maxUseful = std::max<int64_t>(1, n / std::max<int64_t>(1, minPerThread));
-    const int t = static_cast<int>(std::min<int64_t>(std::max(1, threads), maxUseful));
-    if (t <= 1) {
-        body(int64_t{0}, n);
-        return;
-    }
-    struct Context {
-        const Body* body;
-        int64_t n, chunk;
-    } ctx{&body, n, (n + t - 1) / t};
-    RunTasks(
-        t,
-        [](const void* p, int k) {
-            const auto* c = static_cast<const Context*>(p);
-            (*c->body)(std::min(c->n, c->chunk * k), std::min(c->n, c->chunk * (k + 1)));
-        },
-        &ctx);
-}
 
 // Per-channel reductions (deterministic blocked order).
 Channels Dot(const Vector& a, const Vector& b, int threads);

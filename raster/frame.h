@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
 // frame.h — the value types that describe one frame for raster/: textures (cube maps and 2D
 // textures, RGBA8, every MIP level given explicitly), sampler state, passes of clip-space
-// triangles, blend state. A Frame is what a raster case file (viewer_tty/case_file.h) holds and
-// what both pemref's rasterizer and the OpenGL reference harness (pemref-gl) render.
+// triangles, blend state. A Frame is what a raster case file (viewer_tty/conformance/case_file.h)
+// holds and what both pemref's rasterizer and the OpenGL reference harness (pemref-gl) render.
 //
 // Conventions (shared by every module):
 //  - Cube faces in GL order: 0 +X, 1 -X, 2 +Y, 3 -Y, 4 +Z, 5 -Z (GL 4.6 table 8.19).
@@ -10,7 +10,7 @@
 //    ((j * size + i) * 4) inside that face/level image, exactly what glTexImage2D receives.
 //  - Images (Image8, ImageF) are stored rows top-down: row 0 is the top of the picture, which is
 //    GL window y = height - 1 (glReadPixels rows reversed).
-// Not here: parsing (viewer_tty/case_file.h), rendering (raster/render.h).
+// Not here: parsing (viewer_tty/conformance/case_file.h), rendering (raster/render.h).
 #pragma once
 
 #include <algorithm>
@@ -19,6 +19,8 @@
 #include <glm/glm.hpp>
 #include <string>
 #include <vector>
+
+#include "base/image8.h"
 
 namespace pem::raster {
 
@@ -127,12 +129,8 @@ struct Frame {
 
 // Images -------------------------------------------------------------------------------------
 
-// RGBA8 pixels, rows top-down, 4 bytes per pixel.
-struct Image8 {
-    int width = 0, height = 0;
-    std::vector<uint8_t> rgba;
-    bool operator==(const Image8&) const = default;
-};
+// RGBA8 pixels, rows top-down, 4 bytes per pixel (base/image8.h).
+using Image8 = base::Image8;
 
 // Float RGBA pixels, rows top-down (the `linear` profile's float framebuffer).
 struct ImageF {

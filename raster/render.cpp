@@ -15,13 +15,13 @@
 #include <exception>
 #include <stdexcept>
 
+#include "base/worker_pool.h"
 #include "raster/blend.h"
 #include "raster/clip.h"
 #include "raster/float_mode.h"
 #include "raster/fragment.h"
 #include "raster/numeric.h"
 #include "raster/triangle_setup.h"
-#include "raster/worker_pool.h"
 
 namespace pem::raster {
 namespace {
@@ -117,7 +117,7 @@ void SetupTriangles(const Frame& frame, const std::vector<const Pass*>& passes,
 // (llvmpipe's draw and rasterizer threads both flush).
 template <typename Fn>
 void RunWorkers(int workers, bool ftz, const Fn& fn) {
-    RunOnWorkers(workers, [&](int w) {
+    base::RunOnWorkers(workers, [&](int w) {
         if (ftz) {
             ScopedFlushToZero guard;
             fn(w);
@@ -152,7 +152,7 @@ void DrawPass(const std::vector<std::vector<PassDraw>>& variants, std::vector<Se
     for (uint32_t i : pass.indices) pv->state[i] = VertexState::Inside;
     pv->window.resize(passes.size());
     for (std::vector<WindowVertex>& w : pv->window) w.resize(nv);
-    SpinBarrier sync(workers);
+    base::SpinBarrier sync(workers);
     // A worker whose step throws does no more work but keeps arriving at the barriers, so the
     // others are not left waiting; every worker skips the steps after a failure, and
     // RunOnWorkers rethrows the error once all have returned.

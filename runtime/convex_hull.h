@@ -9,7 +9,7 @@
 // A triangle is on the hull when no vertex of the mesh lies in front of its plane by more than
 // tolerance × the mesh's bounding-box diagonal (double arithmetic; degenerate triangles count
 // as on the hull). O(triangles × vertices), with an early exit per triangle.
-// Not here: building hulls, rendering (renderer.h), the inference's choice (infer_run.h).
+// Not here: building hulls, rendering (renderer.h), the inference's choice (pipeline/infer_job.h).
 #pragma once
 
 #include <cstdint>

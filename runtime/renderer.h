@@ -2,7 +2,7 @@
 // renderer.h — frames at any viewpoint from the inferred maps, drawn by raster/'s llvmpipe
 // profile (PEM §5, hybrid §5), and the baselines they are compared with.
 //
-//   Renderer r(LoadPemSet("out/pem"), /*threads=*/2);
+//   Renderer r(std::move(scene), std::move(maps), /*threads=*/2);   // map_set.h
 //   RenderedFrame f = r.Render(r.Orbit(30, 20, 1), {Method::Hybrid});
 //
 // Methods (per lens group that has maps; other lens groups are ray traced with the full tree):
@@ -14,14 +14,14 @@
 //    `pem_local` over it (only on polygons off the reflector's convex hull), times Schlick's F
 //    per vertex. `layers` = 1 keeps the outermost layer
 //    only (single-layer PEM).
-//  - StaticEm: one cube map per group traced from its EM origin (the group itself left out),
-//    looked up with the exit directions of the hybrid paths (a shell at infinity), F·G.
+//  - StaticEm: one cube map per group traced from its EM origin (static_em.h), looked up with
+//    the exit directions of the hybrid paths (a shell at infinity), F·G.
 //  - RayTraced: trace/render.h's reference (full tree) at spp × spp.
 // The two viewpoint samples nearest to the eye are blended by distance (w_i ∝ the other's
 // distance). The rest of the frame: one camera ray per pixel, shaded by the ray tracer (diffuse
 // direct light with shadows, environment); pixels whose camera ray first hits a group with maps
 // take that group's raster result. Timings per stage as the hybrid paper's table.
-// Not here: files and the command line (viewer_tty/cmd_render.cpp), the viewer loop.
+// Not here: files (pipeline/pem_set.h opens a PEM directory), the command line, the viewer.
 #pragma once
 
 #include <memory>
@@ -29,8 +29,9 @@
 #include <vector>
 
 #include "raster/camera.h"
-#include "runtime/pem_set.h"
+#include "runtime/map_set.h"
 #include "trace/image.h"
+#include "trace/scene.h"
 #include "trace/tracer.h"
 
 namespace pem::runtime {
@@ -72,17 +73,17 @@ struct RenderedFrame {
 
 class Renderer {
   public:
-    Renderer(PemSet set, int threads);
+    Renderer(trace::Scene scene, MapSet maps, int threads);
     ~Renderer();
     Renderer(const Renderer&) = delete;
     Renderer& operator=(const Renderer&) = delete;
 
     RenderedFrame Render(const raster::Camera& camera, const RenderSettings& settings);
 
-    const PemSet& pems() const;
+    const MapSet& maps() const;
     const trace::Scene& scene() const;
     const trace::Tracer& tracer() const;
-    // The camera of viewpoint sample v at the PEM size.
+    // The camera of viewpoint sample v, as it was traced and inferred.
     raster::Camera SampleCamera(int v) const;
     // The first sample's camera orbited about the lens centre: azimuth and elevation (degrees)
     // added to the sample's, distance scaled by `distanceScale`.

@@ -8,8 +8,8 @@
 #include <limits>
 #include <numeric>
 
+#include "base/parallel.h"
 #include "trace/fresnel.h"
-#include "trace/parallel.h"
 
 namespace pem::runtime {
 namespace {
@@ -22,7 +22,7 @@ void ForChunks(size_t n, int threads, const std::function<void(size_t first, siz
         if (n > 0) fn(0, n);
         return;
     }
-    trace::ParallelRows(static_cast<int>(chunks), threads, [&](int c) {
+    base::ParallelFor(static_cast<int>(chunks), threads, [&](int c) {
         const size_t first = static_cast<size_t>(c) * kChunk;
         fn(first, std::min(n, first + kChunk));
     });
@@ -123,7 +123,7 @@ std::vector<uint32_t> DrawOrder(const PassMesh& mesh, const raster::Camera& came
     const int parts = keys.size() < 4096 ? 1 : std::max(1, threads);
     std::vector<size_t> bound(static_cast<size_t>(parts) + 1);
     for (int p = 0; p <= parts; ++p) bound[static_cast<size_t>(p)] = keys.size() * p / parts;
-    trace::ParallelRows(parts, threads, [&](int p) {
+    base::ParallelFor(parts, threads, [&](int p) {
         std::sort(keys.begin() + static_cast<std::ptrdiff_t>(bound[static_cast<size_t>(p)]),
                   keys.begin() + static_cast<std::ptrdiff_t>(bound[static_cast<size_t>(p) + 1]),
                   farFirst);

@@ -28,13 +28,13 @@ passed=0; failed=0
 for c in "$cases"/*.json; do
   ref=""
   for dir in "$out"/gcc-O0 "$out"/gcc-O3 "$out"/clang-O2; do
-    [ -x "$dir/viewer_tty/pemref" ] || continue
+    [ -x "$dir/bin/pemref" ] || continue
     for variant in "--threads 1" "--threads 2" "--threads 2 base"; do
       args=${variant% base}
       if [[ $variant == *base ]]; then
-        h=$(PEM_ISA=base "$dir/viewer_tty/pemref" raster "$c" $args)
+        h=$(PEM_ISA=base "$dir/bin/pemref" raster "$c" $args)
       else
-        h=$("$dir/viewer_tty/pemref" raster "$c" $args)
+        h=$("$dir/bin/pemref" raster "$c" $args)
       fi
       if [ -z "$ref" ]; then ref=$h; elif [ "$h" != "$ref" ]; then
         echo "MISMATCH $(basename "$c") $(basename "$dir") $variant: $h vs $ref"; failed=$((failed+1)); continue 2

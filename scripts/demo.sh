@@ -14,13 +14,13 @@ grep -q '^PEM_GL:BOOL=OFF' build/CMakeCache.txt 2>/dev/null || targets="$targets
 PEM_TARGETS=$targets bash scripts/build.sh || PEM_TARGETS="pemref gen_cases" bash scripts/build.sh
 out=${OUT_DIR:-out}
 mkdir -p "$out"
-./build/viewer_tty/pemref demo --out "$out/demo" --threads "$(nproc)"
+./build/bin/pemref demo --out "$out/demo" --threads "$(nproc)"
 ./build/tests/gen_cases "$out" --bench-only >/dev/null
-ours=$(./build/viewer_tty/pemref raster "$out/bench.json" -o "$out/bench_pemref.png" --threads 2)
+ours=$(./build/bin/pemref raster "$out/bench.json" -o "$out/bench_pemref.png" --threads 2)
 echo "raster: $ours"
-if [ -x ./build/viewer_tty/pemref-gl ]; then
-  gl=$(./build/viewer_tty/pemref-gl "$out/bench.json" -o "$out/bench_gl.png")
-  [ "$ours" == "$gl" ] && echo "raster: identical to $(./build/viewer_tty/pemref-gl "$out/bench.json" --info 2>&1 >/dev/null | head -1)" \
+if [ -x ./build/bin/pemref-gl ]; then
+  gl=$(./build/bin/pemref-gl "$out/bench.json" -o "$out/bench_gl.png")
+  [ "$ours" == "$gl" ] && echo "raster: identical to $(./build/bin/pemref-gl "$out/bench.json" --info 2>&1 >/dev/null | head -1)" \
     || { echo "raster: frames differ from the OpenGL driver"; exit 1; }
 fi
 echo "outputs: $out/demo/ (report.md, report.svg, views/), $out/bench_pemref.png"

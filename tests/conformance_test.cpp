@@ -10,11 +10,11 @@
 #include <filesystem>
 #include <fstream>
 
+#include "base/png_io.h"
 #include "raster/render.h"
 #include "tests/case_generator.h"
-#include "viewer_tty/case_file.h"
-#include "viewer_tty/gl_reference.h"
-#include "viewer_tty/png_io.h"
+#include "viewer_tty/conformance/case_file.h"
+#include "viewer_tty/conformance/gl_reference.h"
 
 namespace pem::test {
 namespace {
@@ -31,31 +31,31 @@ void WriteFailure(const std::string& name, const std::string& json, const raster
     const std::filesystem::path dir = std::filesystem::path(PEM_TEST_OUTPUT_DIR) / "conformance";
     std::filesystem::create_directories(dir);
     std::ofstream(dir / (name + ".json")) << json;
-    cli::WritePng((dir / (name + "_pemref.png")).string(), ours);
-    cli::WritePng((dir / (name + "_llvmpipe.png")).string(), gl);
+    base::WritePng((dir / (name + "_pemref.png")).string(), ours);
+    base::WritePng((dir / (name + "_llvmpipe.png")).string(), gl);
     raster::Image8 diff = ours;
     for (size_t i = 0; i < diff.rgba.size(); i += 4) {
         const bool same = std::equal(&ours.rgba[i], &ours.rgba[i] + 4, &gl.rgba[i]);
         diff.rgba[i] = diff.rgba[i + 1] = diff.rgba[i + 2] = same ? 0 : 255;
         diff.rgba[i + 3] = 255;
     }
-    cli::WritePng((dir / (name + "_diff.png")).string(), diff);
+    base::WritePng((dir / (name + "_diff.png")).string(), diff);
 }
 
 TEST_P(Conformance, BitIdenticalToLlvmpipe) {
     // The reference must be llvmpipe, also on machines with a GPU.
     setenv("LIBGL_ALWAYS_SOFTWARE", "1", 1);
-    const std::optional<std::string> why = cli::GlAvailable();
+    const std::optional<std::string> why = conformance::GlAvailable();
     ASSERT_FALSE(why.has_value()) << "OpenGL (EGL) unavailable: " << *why;
-    ASSERT_NE(cli::GlRendererString().find("llvmpipe"), std::string::npos)
-        << "reference renderer is not llvmpipe: " << cli::GlRendererString();
+    ASSERT_NE(conformance::GlRendererString().find("llvmpipe"), std::string::npos)
+        << "reference renderer is not llvmpipe: " << conformance::GlRendererString();
 
     const NamedCase& c = Cases()[GetParam()];
-    const std::string json = cli::CaseToJson(c.frame);
-    const raster::Frame frame = cli::ParseCaseJson(json, c.name);
+    const std::string json = conformance::CaseToJson(c.frame);
+    const raster::Frame frame = conformance::ParseCaseJson(json, c.name);
     const raster::PreparedFrame prepared(frame);
     const raster::Image8 ours = raster::Render(prepared, {}).image8;
-    const raster::Image8 gl = cli::RenderWithGl(frame, 1, nullptr);
+    const raster::Image8 gl = conformance::RenderWithGl(frame, 1, nullptr);
     ASSERT_EQ(ours.rgba.size(), gl.rgba.size());
     size_t differ = 0, first = 0;
     int maxDelta = 0;

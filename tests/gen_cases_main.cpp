@@ -7,7 +7,7 @@
 #include <fstream>
 
 #include "tests/case_generator.h"
-#include "viewer_tty/case_file.h"
+#include "viewer_tty/conformance/case_file.h"
 
 int main(int argc, char** argv) {
     if (argc < 2) {
@@ -18,7 +18,7 @@ int main(int argc, char** argv) {
     const bool benchOnly = argc > 2 && std::strcmp(argv[2], "--bench-only") == 0;
     std::filesystem::create_directories(dir);
     auto write = [&](const std::string& name, const pem::raster::Frame& f) {
-        std::ofstream(dir / (name + ".json")) << pem::cli::CaseToJson(f);
+        std::ofstream(dir / (name + ".json")) << pem::conformance::CaseToJson(f);
     };
     // 640x480, sky quad + 200x100 UV sphere (40k triangles), 256^2 cube, trilinear, seamless.
     write("bench", pem::test::BenchmarkFrame(640, 480, 100, 200, 256));

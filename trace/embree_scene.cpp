@@ -14,7 +14,8 @@
 #include <iterator>
 #include <mutex>
 #include <stdexcept>
-#include <thread>
+
+#include "base/worker_pool.h"
 
 namespace pem::trace {
 
@@ -368,15 +369,11 @@ double EmbreeScene::PacketThroughputMrays(std::span<const raster::Ray> rays, int
     std::atomic<size_t> hits{0};
     for (int r = 0; r < std::max(1, repeats); ++r) {
         const auto t0 = std::chrono::steady_clock::now();
-        std::vector<std::thread> pool;
-        for (size_t t = 0; t < n; ++t) {
-            const size_t lo = std::min(rays.size(), t * chunk);
+        base::RunOnWorkers(static_cast<int>(n), [&](int t) {
+            const size_t lo = std::min(rays.size(), static_cast<size_t>(t) * chunk);
             const size_t hi = std::min(rays.size(), lo + chunk);
-            pool.emplace_back([&, lo, hi] {
-                hits += TraceChunk(impl_->scene, rays.subspan(lo, hi - lo), packetSize);
-            });
-        }
-        for (std::thread& t : pool) t.join();
+            hits += TraceChunk(impl_->scene, rays.subspan(lo, hi - lo), packetSize);
+        });
         const double s =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         best = std::max(best, static_cast<double>(rays.size()) / s * 1e-6);

@@ -5,10 +5,10 @@
 // Conventions:
 //  - One Embree triangle geometry per Scene object, geomID == object index; primID == index
 //    into Object::triangles. Scene flags ROBUST (+ CONTEXT_FILTER_FUNCTION for IntersectAll),
-//    build quality HIGH (deterministic for any thread count, deps.md §4).
+//    build quality HIGH (deterministic for any thread count, docs/deps.md §4).
 //  - Single rays (rtcIntersect1 / rtcOccluded1) and packets of up to 8 (rtcIntersect8 /
-//    rtcOccluded8 with a valid mask), which give bit-identical hits (deps.md §4; checked in
-//    intersect_test.cpp). Never COHERENT streams: those break ties differently (deps.md §4).
+//    rtcOccluded8 with a valid mask), which give bit-identical hits (docs/deps.md §4; checked in
+//    intersect_test.cpp). Never COHERENT streams: those break ties differently (docs/deps.md §4).
 //  - Hits are accepted for tnear <= t <= tfar; two-sided (no back-face culling). On exact ties
 //    (a ray through a shared edge or coincident triangles) Embree's winner is unspecified
 //    but deterministic for a fixed ISA, build quality and scene.

@@ -13,7 +13,7 @@
 #include <filesystem>
 #include <numbers>
 
-#include "viewer_tty/input_error.h"
+#include "base/input_error.h"
 
 namespace pem::trace {
 
@@ -28,8 +28,8 @@ void ReadPixels(const std::string& path, Environment* env, Imath::Box2i* dataWin
     const long long w = static_cast<long long>(dw.max.x) - dw.min.x + 1;
     const long long h = static_cast<long long>(dw.max.y) - dw.min.y + 1;
     if (w <= 0 || h <= 0 || w * h > kMaxPixels)
-        throw pem::InputError(path, "data window " + std::to_string(w) + "x" + std::to_string(h) +
-                                        " is empty or too large");
+        throw pem::base::InputError(path, "data window " + std::to_string(w) + "x" +
+                                              std::to_string(h) + " is empty or too large");
     std::vector<Imf::Rgba> px(static_cast<size_t>(w * h));
     // The frame buffer is addressed with data-window coordinates (OpenEXR convention).
     file.setFrameBuffer(px.data() - dw.min.x - static_cast<long long>(dw.min.y) * w, 1,
@@ -42,9 +42,9 @@ void ReadPixels(const std::string& path, Environment* env, Imath::Box2i* dataWin
         const float c[3] = {px[i].r, px[i].g, px[i].b};
         for (int k = 0; k < 3; ++k) {
             if (!std::isfinite(c[k]))
-                throw pem::InputError(path, "non-finite texel at (" +
-                                                std::to_string(i % static_cast<size_t>(w)) + ", " +
-                                                std::to_string(i / static_cast<size_t>(w)) + ")");
+                throw pem::base::InputError(
+                    path, "non-finite texel at (" + std::to_string(i % static_cast<size_t>(w)) +
+                              ", " + std::to_string(i / static_cast<size_t>(w)) + ")");
             env->rgb[3 * i + static_cast<size_t>(k)] = std::max(c[k], 0.0f);
         }
     }
@@ -105,7 +105,7 @@ Environment LoadEnvironment(const std::string& exrPath, Environment::Mapping map
                             float intensity) {
     std::error_code ec;
     if (!std::filesystem::is_regular_file(exrPath, ec))
-        throw pem::InputError(exrPath, "cannot open file (missing or not a regular file)");
+        throw pem::base::InputError(exrPath, "cannot open file (missing or not a regular file)");
     Environment env;
     env.path = exrPath;
     env.mapping = mapping;
@@ -113,15 +113,15 @@ Environment LoadEnvironment(const std::string& exrPath, Environment::Mapping map
     Imath::Box2i dw;
     try {
         ReadPixels(exrPath, &env, &dw);
-    } catch (const pem::InputError&) {
+    } catch (const pem::base::InputError&) {
         throw;
     } catch (const std::exception& e) {  // Iex::BaseExc and std::bad_alloc
-        throw pem::InputError(exrPath, std::string("OpenEXR: ") + e.what());
+        throw pem::base::InputError(exrPath, std::string("OpenEXR: ") + e.what());
     }
     if (mapping == Environment::Mapping::Cube && env.height != 6 * env.width)
-        throw pem::InputError(exrPath, "cube map must be N wide and 6N tall, got " +
-                                           std::to_string(env.width) + "x" +
-                                           std::to_string(env.height));
+        throw pem::base::InputError(exrPath, "cube map must be N wide and 6N tall, got " +
+                                                 std::to_string(env.width) + "x" +
+                                                 std::to_string(env.height));
     return env;
 }
 

@@ -33,7 +33,7 @@ struct Environment {
 };
 
 // Reads an OpenEXR file (any compression RgbaInputFile handles, e.g. DWAB half). Throws
-// pem::InputError("<path>: <cause>") when it is unreadable, too large, non-finite, or the
+// pem::base::InputError("<path>: <cause>") when it is unreadable, too large, non-finite, or the
 // wrong shape for a cube map.
 Environment LoadEnvironment(const std::string& exrPath, Environment::Mapping mapping,
                             float intensity);

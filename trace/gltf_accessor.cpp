@@ -6,13 +6,13 @@
 #include <cmath>
 #include <cstring>
 
+#include "base/input_error.h"
 #include "trace/gltf_internal.h"
-#include "viewer_tty/input_error.h"
 
 namespace pem::trace::gltf {
 
 void Fail(const Context& ctx, const std::string& cause) {
-    throw pem::InputError(ctx.path, cause);
+    throw pem::base::InputError(ctx.path, cause);
 }
 
 void Note(const Context& ctx, const std::string& note) {

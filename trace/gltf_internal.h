@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
 // gltf_internal.h — INTERNAL to trace/ (scene.cpp, gltf_*.cpp): checked access to a parsed
 // tinygltf::Model. Every helper validates indices, sizes and types and reports a violation as
-// pem::InputError("<gltf path>: <where>: <cause>") through Fail().
-// Uses Debian's shared libtinygltf (deps.md route A): <tiny_gltf.h> WITHOUT
+// pem::base::InputError("<gltf path>: <where>: <cause>") through Fail().
+// Uses Debian's shared libtinygltf (docs/deps.md route A): <tiny_gltf.h> WITHOUT
 // TINYGLTF_IMPLEMENTATION. Nothing outside trace/*.cpp may include this header.
 #pragma once
 

@@ -7,13 +7,13 @@
 #include <ImfHeader.h>
 #include <ImfInputFile.h>
 #include <ImfOutputFile.h>
-#include <unistd.h>
 
 #include <cmath>
 #include <cstdio>
 #include <exception>
 
-#include "viewer_tty/input_error.h"
+#include "base/atomic_file.h"
+#include "base/input_error.h"
 
 namespace pem::trace {
 
@@ -58,18 +58,14 @@ void WriteExrFile(const std::string& path, const FloatImage& image) {
 }  // namespace
 
 void WriteExr(const std::string& path, const FloatImage& image) {
-    if (image.width <= 0 || image.height <= 0) throw InputError(path, "empty image");
-    const std::string tmp = path + ".tmp." + std::to_string(getpid());
-    try {
-        WriteExrFile(tmp, image);
-    } catch (const std::exception& e) {
-        std::remove(tmp.c_str());
-        throw InputError(path, std::string("cannot write OpenEXR: ") + e.what());
-    }
-    if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-        std::remove(tmp.c_str());
-        throw InputError(path, "cannot rename the temporary file");
-    }
+    if (image.width <= 0 || image.height <= 0) throw base::InputError(path, "empty image");
+    base::WriteAtomically(path, [&](const std::string& tmp) {
+        try {
+            WriteExrFile(tmp, image);
+        } catch (const std::exception& e) {
+            throw std::runtime_error(std::string("cannot write OpenEXR: ") + e.what());
+        }
+    });
 }
 
 FloatImage ReadExr(const std::string& path) {
@@ -85,7 +81,7 @@ FloatImage ReadExr(const std::string& path) {
         else if (ch.findChannel("Y"))
             channels = 1;
         else
-            throw InputError(path, "no Y or R,G,B channels");
+            throw base::InputError(path, "no Y or R,G,B channels");
         image = FloatImage(w, h, channels);
         Imf::FrameBuffer frame;
         const size_t xStride = sizeof(float) * static_cast<size_t>(channels);
@@ -98,13 +94,13 @@ FloatImage ReadExr(const std::string& path) {
                                     xStride, xStride * static_cast<size_t>(w)));
         file.setFrameBuffer(frame);
         file.readPixels(dw.min.y, dw.max.y);
-    } catch (const InputError&) {
+    } catch (const base::InputError&) {
         throw;
     } catch (const std::exception& e) {
-        throw InputError(path, std::string("cannot read OpenEXR: ") + e.what());
+        throw base::InputError(path, std::string("cannot read OpenEXR: ") + e.what());
     }
     for (float v : image.data)
-        if (!std::isfinite(v)) throw InputError(path, "non-finite pixel value");
+        if (!std::isfinite(v)) throw base::InputError(path, "non-finite pixel value");
     return image;
 }
 

@@ -8,7 +8,7 @@
 // written to `<path>.tmp.<pid>` and renamed, so a failed write leaves no file behind.
 // Reading: ReadExr takes R,G,B(,A) or Y float/half channels (missing A = 1 is not assumed: an
 // image with R,G,B only reads as 3 channels).
-// Not here: tone mapping for previews (viewer_tty/cmd_trace.cpp).
+// Not here: tone mapping for previews (base/display_image.h, pipeline/trace_job.h).
 #pragma once
 
 #include <glm/glm.hpp>
@@ -38,11 +38,12 @@ struct FloatImage {
 };
 
 // Writes channels R,G,B(,A) (or Y for one channel) as 32-bit float OpenEXR. Throws
-// pem::InputError("<path>: <cause>") when the file cannot be written.
+// pem::base::InputError("<path>: <cause>") when the file cannot be written.
 void WriteExr(const std::string& path, const FloatImage& image);
 
 // Reads a scanline or tiled OpenEXR image written by WriteExr (or any with Y / R,G,B(,A)).
-// Throws pem::InputError("<path>: <cause>") for a missing or malformed file or non-finite data.
+// Throws pem::base::InputError("<path>: <cause>") for a missing or malformed file or non-finite
+// data.
 FloatImage ReadExr(const std::string& path);
 
 }  // namespace pem::trace

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <limits>
 
-#include "trace/parallel.h"
+#include "base/parallel.h"
 #include "trace/segment.h"
 
 namespace pem::trace {
@@ -172,7 +172,7 @@ LayerImages RenderLayers(const Tracer& tracer, const raster::Camera& camera, int
         out.term[t].assign(n, FloatImage(camera.width, camera.height, 4));
     std::vector<RayCounts> rowCounts(static_cast<size_t>(camera.height));
     const LayerPainter painter{tracer, camera, k, terms, layers, out};
-    ParallelRows(
+    base::ParallelFor(
         camera.height, threads,
         [&](int y) {
             for (int x = 0; x < camera.width; ++x)

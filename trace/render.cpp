@@ -10,7 +10,7 @@
 #include <span>
 #include <vector>
 
-#include "trace/parallel.h"
+#include "base/parallel.h"
 
 namespace pem::trace {
 
@@ -122,7 +122,7 @@ FrameResult RenderFrame(const Tracer& tracer, const raster::Camera& camera, int 
     // rows (no per-row allocation and page faults); every buffer is reset per row.
     std::mutex poolMutex;
     std::vector<std::unique_ptr<RowTracer>> pool;
-    ParallelRows(
+    base::ParallelFor(
         camera.height, threads,
         [&](int y) {
             std::unique_ptr<RowTracer> row;

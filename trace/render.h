@@ -8,7 +8,7 @@
 // camera and shadow rays go in 8-ray packets and full-tree leaves are shaded after the trees
 // (Tracer::RadianceTape); the values are bit for bit those of Tracer::Radiance / GreedyRadiance
 // sample by sample (tracer_test.cpp).
-// Not here: per-lens-group segmentation (segment.h), files (trace_run.h).
+// Not here: per-lens-group segmentation (segment.h), files (pipeline/trace_job.h).
 #pragma once
 
 #include <functional>

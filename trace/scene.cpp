@@ -14,8 +14,8 @@
 #include <numbers>
 #include <set>
 
+#include "base/input_error.h"
 #include "trace/gltf_internal.h"
-#include "viewer_tty/input_error.h"
 
 namespace pem::trace {
 
@@ -46,7 +46,7 @@ std::string CompressionHint(const std::string& name) {
 tinygltf::Model ParseGltf(const std::string& path) {
     std::error_code ec;
     if (!std::filesystem::is_regular_file(path, ec))
-        throw pem::InputError(path, "cannot open file (missing or not a regular file)");
+        throw pem::base::InputError(path, "cannot open file (missing or not a regular file)");
     const std::string bytes = ReadFileBytes(path);
     tinygltf::TinyGLTF loader;
     tinygltf::Model model;
@@ -57,12 +57,12 @@ tinygltf::Model ParseGltf(const std::string& path) {
     if (!ok || !err.empty() || !warn.empty()) {
         for (const std::string& ext : kCompressionExtensions)
             if (bytes.find(ext) != std::string::npos)
-                throw pem::InputError(path, CompressionHint(ext));
+                throw pem::base::InputError(path, CompressionHint(ext));
         std::string cause = !err.empty()    ? err
                             : !warn.empty() ? warn
                                             : "tinygltf failed to parse the file";
         while (!cause.empty() && (cause.back() == '\n' || cause.back() == ' ')) cause.pop_back();
-        throw pem::InputError(path, "glTF parse error: " + cause);
+        throw pem::base::InputError(path, "glTF parse error: " + cause);
     }
     return model;
 }
@@ -259,7 +259,7 @@ void ReadEnvironment(const Context& ctx, Scene* scene) {
         scene->environment = LoadEnvironment(
             exr, mapping == "cube" ? Environment::Mapping::Cube : Environment::Mapping::LatLong,
             static_cast<float>(intensity));
-    } catch (const pem::InputError& e) {
+    } catch (const pem::base::InputError& e) {
         Fail(ctx, where + ": " + e.what());
     }
 }

@@ -20,8 +20,8 @@
 //    4:3); CameraForSize picks another size. `pemref_look_at` (node extras) sets the target
 //    distance. Without a camera node, hasCamera is false.
 //  - Lights: KHR_lights_punctual; colour × intensity (cd for point/spot, lux for directional).
-// Errors: every malformed or unsupported input throws pem::InputError with one line
-// "<gltf path>: <cause>" (viewer_tty/input_error.h).
+// Errors: every malformed or unsupported input throws pem::base::InputError with one line
+// "<gltf path>: <cause>" (base/input_error.h).
 // Not here: animation, skins and morph targets (ignored with a note), Draco/meshopt (rejected),
 // ray intersection (embree_scene.h, brute_force.h).
 #pragma once
@@ -117,12 +117,19 @@ struct Scene {
     bool IsLens(int object) const;
 };
 
-// Loads a .gltf or .glb file (tinygltf). Throws pem::InputError on any bad input.
+// Loads a .gltf or .glb file (tinygltf). Throws pem::base::InputError on any bad input.
 Scene LoadScene(const std::string& gltfPath);
 
 // Lens groups of a set of objects (used by LoadScene; exposed for tests).
 std::vector<LensGroup> FindLensGroups(const std::vector<Object>& objects,
                                       const std::vector<Material>& materials);
+
+// The material of a lens group's first object (the groups's objects are of one kind: a
+// mirror-only group's F0 is its first mirror's base colour).
+const Material& GroupMaterial(const Scene& scene, int group);
+
+// Centre of all lens objects' bounds (the scene bounds' centre without lenses).
+glm::vec3 LensCentre(const Scene& scene);
 
 // The scene camera at another image size (same eye, target, up, fovY).
 raster::Camera CameraForSize(const SceneCamera& camera, int width, int height);

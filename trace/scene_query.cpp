@@ -72,6 +72,20 @@ std::vector<LensGroup> FindLensGroups(const std::vector<Object>& objects,
     return groups;
 }
 
+const Material& GroupMaterial(const Scene& scene, int group) {
+    const int object = scene.lensGroups.at(static_cast<size_t>(group)).objects.at(0);
+    return scene.materials.at(
+        static_cast<size_t>(scene.objects[static_cast<size_t>(object)].material));
+}
+
+glm::vec3 LensCentre(const Scene& scene) {
+    Bounds b;
+    for (const LensGroup& g : scene.lensGroups) b.Extend(g.bounds);
+    if (b.Empty())
+        for (const Object& o : scene.objects) b.Extend(o.bounds);
+    return b.Empty() ? glm::vec3(0.0f) : b.Center();
+}
+
 raster::Camera CameraForSize(const SceneCamera& camera, int width, int height) {
     raster::Camera c = camera.camera;
     c.width = width;

@@ -6,8 +6,8 @@
 #include <cmath>
 #include <span>
 
+#include "base/parallel.h"
 #include "trace/confidence.h"
-#include "trace/parallel.h"
 
 namespace pem::trace {
 
@@ -170,7 +170,7 @@ GroupSegmentation SegmentGroup(const Tracer& tracer, const raster::Camera& camer
     }
     std::vector<RowRecords> rows(static_cast<size_t>(h));
     const Segmenter seg{tracer, camera, k, group, viewpoint, emOrigin, out};
-    ParallelRows(
+    base::ParallelFor(
         h, threads,
         [&](int y) {
             for (int x = 0; x < w; ++x) seg.Pixel(x, y, rows[static_cast<size_t>(y)]);

@@ -16,7 +16,7 @@
 #include <stdexcept>
 #include <tuple>
 
-#include "trace/parallel.h"
+#include "base/parallel.h"
 
 namespace pem::trace {
 
@@ -350,7 +350,7 @@ TessellationResult Tessellator::Run() {
     const size_t nTri = in_.triangles.size();
     const size_t nRuns = threads_ == 1 ? 1 : std::min<size_t>(nTri, 4 * threads_);
     std::vector<std::unique_ptr<Refiner>> runs(nRuns);
-    ParallelRows(static_cast<int>(nRuns), threads_, [&](int r) {
+    base::ParallelFor(static_cast<int>(nRuns), threads_, [&](int r) {
         auto run = std::make_unique<Refiner>(shared_);
         if (in_.occluded) run->inputOccluded.assign(in_.positions.size(), -1);
         run->Run(nTri * static_cast<size_t>(r) / nRuns, nTri * static_cast<size_t>(r + 1) / nRuns);
@@ -408,7 +408,7 @@ void Tessellator::TraceInputVertices() {
     shared_.screen.resize(n);
     shared_.backFacing.assign(nTri, 0);
     const size_t bookChunks = (std::max(n, nTri) + kBookChunk - 1) / kBookChunk;
-    ParallelRows(static_cast<int>(bookChunks), threads_, [&](int c) {
+    base::ParallelFor(static_cast<int>(bookChunks), threads_, [&](int c) {
         const size_t first = static_cast<size_t>(c) * kBookChunk;
         for (size_t v = first; v < std::min(n, first + kBookChunk); ++v)
             shared_.screen[v] = in_.project(in_.positions[v]);
@@ -432,7 +432,7 @@ void Tessellator::TraceInputVertices() {
     shared_.paths.assign(n, std::nullopt);
     constexpr size_t kChunk = 256;
     const size_t chunks = (n + kChunk - 1) / kChunk;
-    ParallelRows(static_cast<int>(chunks), threads_, [&](int c) {
+    base::ParallelFor(static_cast<int>(chunks), threads_, [&](int c) {
         for (size_t v = static_cast<size_t>(c) * kChunk; v < std::min(n, (c + 1) * kChunk); ++v)
             if (wanted[v])
                 shared_.paths[v] = in_.evaluateInput
@@ -481,7 +481,7 @@ void Tessellator::RemoveJunctions() {
     const size_t chunks = (leaves_.size() + kChunk - 1) / kChunk;
     std::vector<std::vector<glm::uvec3>> parts(chunks);
     std::vector<size_t> junctions(chunks, 0);
-    ParallelRows(static_cast<int>(chunks), threads_, [&](int c) {
+    base::ParallelFor(static_cast<int>(chunks), threads_, [&](int c) {
         std::vector<glm::uvec3>& part = parts[static_cast<size_t>(c)];
         std::vector<PolyVertex> poly;
         const size_t end = std::min(leaves_.size(), (c + 1) * kChunk);

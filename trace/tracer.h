@@ -23,7 +23,7 @@
 //    same bits as the one-ray-at-a-time functions.
 // Camera: raster/camera.h PixelRay; k×k supersamples per pixel on a regular grid at
 // (x + (i + ½)/k, y + (j + ½)/k) (k = 1: the pixel centre).
-// Not here: images and files (render.h, trace_run.h), layers (layers.h).
+// Not here: images and files (render.h, pipeline/trace_job.h), layers (layers.h).
 #pragma once
 
 #include <cstdint>

@@ -2,7 +2,7 @@
 // scene_test.cpp — trace/scene.h: the two bundled scenes load with the documented objects,
 // materials, lens groups, camera, lights and environment; every malformed input (our crafted
 // tests/data/bad_scenes and Debian's assimp-testmodels when installed) gives a one-line
-// pem::InputError naming the file.
+// pem::base::InputError naming the file.
 #include "trace/scene.h"
 
 #include <ImfEnvmapAttribute.h>
@@ -19,7 +19,7 @@
 #include <numbers>
 #include <sstream>
 
-#include "viewer_tty/input_error.h"
+#include "base/input_error.h"
 
 namespace pem::trace {
 namespace {
@@ -228,12 +228,12 @@ TEST(Environment, CubeFacesFollowOpenExrLayout) {
     const glm::vec3 axes[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
     for (int f = 0; f < 6; ++f) EXPECT_FLOAT_EQ(EnvRadiance(env, axes[f]).x, float(f + 1)) << f;
     EXPECT_THROW(LoadEnvironment(kRoot + "/data/env/studio.exr", Environment::Mapping::Cube, 1.0f),
-                 pem::InputError);
+                 pem::base::InputError);
 }
 
 // Bad inputs -------------------------------------------------------------------------------
 
-// Loads `path` as a scene (or an environment for .exr) and returns the InputError message, or
+// Loads `path` as a scene (or an environment for .exr) and returns the base::InputError message, or
 // "" when it loaded.
 std::string LoadError(const std::string& path) {
     try {
@@ -241,7 +241,7 @@ std::string LoadError(const std::string& path) {
             LoadEnvironment(path, Environment::Mapping::LatLong, 1.0f);
         else
             LoadScene(path);
-    } catch (const pem::InputError& e) {
+    } catch (const pem::base::InputError& e) {
         return e.what();
     }
     return "";
@@ -284,7 +284,7 @@ TEST(SceneErrors, MissingFileIsAnInputError) {
 }
 
 // Debian's assimp-testmodels (apt-get install assimp-testmodels): the broken glTF2 files must
-// give an InputError; odd-but-loadable ones must load. Only files present are counted.
+// give an base::InputError; odd-but-loadable ones must load. Only files present are counted.
 TEST(SceneErrors, AssimpTestModelsNeverCrash) {
     const std::string root = "/usr/share/assimp/models/glTF2/";
     if (!std::filesystem::is_directory(root)) GTEST_SKIP() << "assimp-testmodels not installed";
@@ -333,7 +333,7 @@ TEST(SceneErrors, AssimpTestModelsNeverCrash) {
     }
     RecordProperty("assimp_files_checked", counted);
     EXPECT_GT(counted, 0);
-    // Every other glTF2 file there must load or throw InputError, never anything else.
+    // Every other glTF2 file there must load or throw base::InputError, never anything else.
     for (const auto& e : std::filesystem::recursive_directory_iterator(root)) {
         const std::string ext = e.path().extension().string();
         if (ext == ".gltf" || ext == ".glb") {

@@ -1,0 +1,115 @@
+// SPDX-License-Identifier: MIT
+// bake_job.cpp — the resumable trace → infer pipeline (bake_job.h).
+#include "pipeline/bake_job.h"
+
+#include <atomic>
+#include <filesystem>
+#include <mutex>
+#include <vector>
+
+#include "base/atomic_file.h"
+#include "base/input_error.h"
+#include "base/worker_pool.h"
+#include "pipeline/layout.h"
+#include "pipeline/pem_manifest.h"
+
+namespace pem::pipeline {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Step 1: the trace, unless a finished one is there.
+TraceManifest TraceOnce(const BakeJobOptions& o) {
+    const std::string traceDir = BakeTraceDir(o.outDir);
+    if (!fs::exists(traceDir + "/" + kTraceJson)) {
+        TraceJobOptions t = o.trace;
+        t.outDir = traceDir;
+        t.threads = o.threads * o.jobs;
+        if (o.log) o.log("tracing " + t.scene);
+        RunTraceJob(t);
+    }
+    return ReadTraceManifest(traceDir);
+}
+
+// Step 2: the samples without sample.json, `jobs` at a time on the worker pool.
+void InferSamples(const BakeJobOptions& o, int n, const std::vector<int>& todo) {
+    const std::string pemDir = BakePemDir(o.outDir);
+    const int jobs = std::max(1, std::min<int>(o.jobs, static_cast<int>(todo.size())));
+    std::atomic<int> next{0};
+    std::mutex mutex;  // progress calls, one at a time
+    std::vector<double> partial(static_cast<size_t>(jobs), 0.0);
+    int done = n - static_cast<int>(todo.size());
+    auto report = [&](int job, double fraction, bool finished) {
+        const std::lock_guard<std::mutex> lock(mutex);
+        partial[static_cast<size_t>(job)] = finished ? 0.0 : fraction;
+        if (finished) ++done;
+        double f = done;
+        for (double p : partial) f += p;
+        if (o.progress) o.progress(f / n);
+    };
+    std::atomic<bool> failed{false};  // a failed sample stops the others at their next one
+    base::RunOnWorkers(jobs, [&](int job) {
+        for (int k = next++; k < static_cast<int>(todo.size()) && !failed; k = next++) {
+            InferJobOptions io = o.infer;
+            io.traceDir = BakeTraceDir(o.outDir);
+            io.outDir = pemDir;
+            io.threads = o.threads;
+            io.views = {todo[static_cast<size_t>(k)]};
+            io.progress = [&, job](const std::string&, double f) { report(job, f, false); };
+            try {
+                const InferJobResult r = RunInferJob(io);
+                WriteSampleJson(pemDir, {r.samples.at(0), r.maps, r.leftOut});
+            } catch (...) {
+                failed = true;
+                throw;
+            }
+            report(job, 1.0, true);
+        }
+    });
+}
+
+// Step 3: infer.json and manifest.json over every sample.
+size_t WriteOutputs(const BakeJobOptions& o, const TraceManifest& trace, int n) {
+    InferRecord rec;
+    rec.dir = BakePemDir(o.outDir);
+    rec.traceDir = BakeTraceDir(o.outDir);
+    rec.res = o.infer.res, rec.threads = o.threads, rec.jobs = o.jobs;
+    rec.neighbours = o.infer.neighbours, rec.hdr = o.infer.hdr, rec.lambda = o.infer.weights;
+    for (int v = 0; v < n; ++v) {
+        const SampleRecord s = ReadSampleJson(rec.dir, v);
+        rec.seconds += s.sample.seconds;
+        rec.samples.push_back(s.sample);
+        rec.maps.insert(rec.maps.end(), s.maps.begin(), s.maps.end());
+        rec.leftOut.insert(rec.leftOut.end(), s.leftOut.begin(), s.leftOut.end());
+    }
+    WriteInferJson(rec);
+    WritePemManifest(PemManifestFor(trace, rec.dir, o.infer.res, o.infer.hdr, {}));
+    return rec.maps.size();
+}
+
+}  // namespace
+
+BakeJobOptions DefaultBakeOptions() {
+    BakeJobOptions o;
+    o.trace.views = "circle:3:10";
+    o.infer.neighbours = 1;
+    o.infer.single = true;  // the report compares the single-layer PEM
+    return o;
+}
+
+BakeJobResult RunBakeJob(const BakeJobOptions& o) {
+    const std::string pemDir = BakePemDir(o.outDir);
+    std::error_code ec;
+    fs::create_directories(pemDir, ec);
+    if (ec) throw base::InputError(o.outDir, "cannot create the directory: " + ec.message());
+    base::RemoveTemporaries(o.outDir);
+    const TraceManifest trace = TraceOnce(o);
+    const int n = static_cast<int>(trace.views.size());
+    std::vector<int> todo;
+    for (int v = 0; v < n; ++v)
+        if (!fs::exists(SampleJsonPath(pemDir, v))) todo.push_back(v);
+    if (!todo.empty()) InferSamples(o, n, todo);
+    return {n, WriteOutputs(o, trace, n)};
+}
+
+}  // namespace pem::pipeline

@@ -1,0 +1,45 @@
+// SPDX-License-Identifier: MIT
+// bake_job.h — trace and infer every viewpoint sample of a scene, resumable: killed at any
+// moment and started again, it produces the same bytes as an uninterrupted run.
+//
+//   BakeJobOptions o;  o.trace.scene = "scene.gltf";  o.outDir = "out/bake";
+//   RunBakeJob(o);     // out/bake/trace, out/bake/pem (layout.h)
+//
+// Steps: temporaries a killed run left are removed; the trace (one step: its layers span every
+// viewpoint) unless trace.json exists; every sample without its sample.json, `jobs` samples at
+// a time, each written whole before its sample.json; infer.json and manifest.json over every
+// sample. The maps do not depend on `jobs` or the thread counts.
+// Not here: argument parsing (viewer_tty/cli/cmd_bake.cpp).
+#pragma once
+
+#include <functional>
+#include <string>
+
+#include "pipeline/infer_job.h"
+#include "pipeline/trace_job.h"
+
+namespace pem::pipeline {
+
+struct BakeJobOptions {
+    std::string outDir;
+    TraceJobOptions trace;  // scene, views, size, spp, layers (outDir and threads are set here)
+    InferJobOptions infer;  // res, neighbours, solver (dirs, views and threads are set here)
+    int jobs = 1;           // samples inferred at once
+    int threads = 1;        // threads per job (the trace uses jobs × threads)
+    // Progress: fraction of the samples done; called from the job threads, one at a time.
+    std::function<void(double fraction)> progress;
+    std::function<void(const std::string& line)> log;  // one line per step started
+};
+
+struct BakeJobResult {
+    int samples = 0;
+    size_t maps = 0;
+};
+
+// Bake defaults: three samples 10° apart, 640×480, 3×3 samples, neighbours = 1, the
+// single-layer maps too (the report compares them).
+BakeJobOptions DefaultBakeOptions();
+
+BakeJobResult RunBakeJob(const BakeJobOptions& options);
+
+}  // namespace pem::pipeline

@@ -1,0 +1,516 @@
+// SPDX-License-Identifier: MIT
+// infer_job.cpp — `pemref infer`: trace directory → PEM files (infer_job.h).
+//
+// Index: files of one map · the stacked system of one map · solving one map · the geometry of
+// the samples in a solve · the maps of one lens group · RunInferJob.
+#include "pipeline/infer_job.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+#include "base/atomic_file.h"
+#include "base/input_error.h"
+#include "base/matrix_market.h"
+#include "base/png_io.h"
+#include "infer/cube_map.h"
+#include "infer/pem_file.h"
+#include "pipeline/layout.h"
+#include "pipeline/pem_manifest.h"
+#include "pipeline/viewpoints.h"
+#include "raster/render.h"
+#include "runtime/convex_hull.h"
+#include "runtime/lens_paths.h"
+#include "runtime/mirror_geometry.h"
+#include "runtime/texgen.h"
+#include "trace/embree_scene.h"
+#include "trace/image.h"
+#include "trace/scene.h"
+#include "trace/tracer.h"
+
+namespace pem::pipeline {
+
+infer::SolveOptions DefaultSolveOptions() {
+    infer::SolveOptions s;
+    s.maxIterations = 150;
+    s.logEvery = 25;
+    s.atol = 1e-4;
+    return s;
+}
+
+namespace {
+
+using nlohmann::json;
+using Clock = std::chrono::steady_clock;
+using infer::Vector;
+
+double Since(Clock::time_point t0) {
+    return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+// Files of one map --------------------------------------------------------------------------
+
+// The 8-bit copy as one PNG: each level's six faces side by side, levels stacked.
+void WriteTexturePng(const raster::Texture& tex, const std::string& path) {
+    int height = 0;
+    for (int l = 0; l < tex.NumLevels(); ++l) height += tex.LevelHeight(l);
+    base::Image8 img{6 * tex.width, height, {}};
+    img.rgba.assign(static_cast<size_t>(img.width) * static_cast<size_t>(img.height) * 4, 0);
+    int y0 = 0;
+    for (int l = 0; l < tex.NumLevels(); ++l) {
+        const int n = tex.LevelWidth(l);
+        for (int f = 0; f < 6; ++f)
+            for (int j = 0; j < n; ++j)
+                for (int i = 0; i < n; ++i)
+                    for (int c = 0; c < 4; ++c)
+                        img.rgba[(static_cast<size_t>(y0 + j) * static_cast<size_t>(img.width) +
+                                  static_cast<size_t>(f * n + i)) *
+                                     4 +
+                                 static_cast<size_t>(c)] =
+                            tex.levels[static_cast<size_t>(l)]
+                                      [((static_cast<size_t>(f) * n + j) * n + i) * 4 + c];
+        y0 += n;
+    }
+    base::WritePng(path, img);
+}
+
+void WriteMapFiles(const infer::CubeMapF& map, const raster::SamplerState& sampler,
+                   const infer::SolveResult& res, const std::string& stem, int threads) {
+    infer::WriteCubeMapExr(map, stem + ".exr", threads);
+    WriteTexturePng(infer::ToTexture8(map, sampler), stem + ".png");
+    infer::WriteLogCsv(res.log, stem + ".csv");
+}
+
+// K, h and x of one solve in Matrix Market format, with the figures scipy's check needs.
+void ExportSystem(const std::string& exportDir, const MapReport& rep,
+                  const infer::LinearSystem& sys, const Vector& x, bool hdr) {
+    char prefix[64];
+    std::snprintf(prefix, sizeof prefix, "/v%03d_g%d_%s", rep.view, rep.group, rep.name.c_str());
+    const std::string stem = exportDir + prefix;
+    base::WriteMatrixMarket(stem + "_K.mtx", base::MatrixView::Of(sys.k.A()), "");
+    base::WriteVectorMarket(stem + "_h.mtx", sys.h, "");
+    base::WriteVectorMarket(stem + "_x.mtx", x, "");
+    base::WriteTextAtomic(stem + ".json", json{{"objective", rep.objective},
+                                               {"bounds", hdr ? "hdr" : "unit"},
+                                               {"iterations", rep.iterations},
+                                               {"solve_seconds", rep.solveSeconds},
+                                               {"rows", rep.rows},
+                                               {"cols", rep.cols}}
+                                                  .dump(2) +
+                                              "\n");
+}
+
+// The stacked system of one map ------------------------------------------------------------
+
+// One observation of a map: a texgen pass and the traced image it must reproduce.
+struct MapInput {
+    const trace::FloatImage* layer = nullptr;     // RGBA premultiplied layer image
+    const trace::FloatImage* coverage = nullptr;  // alpha = lens coverage
+    const trace::FloatImage* confidence = nullptr;
+    raster::Pass pass;
+    double weight = 1.0;  // multiplies the confidence
+    bool own = true;      // the sample's own view (counts in rmse_8bit)
+};
+
+// Rows of b appended to a (the same columns).
+void AppendRows(raster::RenderingMatrix* a, const raster::RenderingMatrix& b) {
+    const int64_t base = a->rowPtr.back();
+    for (size_t r = 1; r < b.rowPtr.size(); ++r) a->rowPtr.push_back(base + b.rowPtr[r]);
+    a->col.insert(a->col.end(), b.col.begin(), b.col.end());
+    a->val.insert(a->val.end(), b.val.begin(), b.val.end());
+    a->offset.insert(a->offset.end(), b.offset.begin(), b.offset.end());
+    a->rendered.insert(a->rendered.end(), b.rendered.begin(), b.rendered.end());
+    a->rows += b.rows;
+}
+
+raster::Frame UnknownFrame(int width, int height, int res, const raster::Pass& pass) {
+    raster::Frame frame;
+    frame.width = width;
+    frame.height = height;
+    frame.depthClamp = true;
+    raster::Texture tex;
+    tex.kind = raster::TextureKind::Cube;
+    tex.width = tex.height = res;
+    for (int l = 0; (res >> l) >= 1; ++l)
+        tex.levels.emplace_back(static_cast<size_t>(6 * (res >> l) * (res >> l) * 4), 0);
+    frame.textures.push_back(std::move(tex));
+    frame.passes.push_back(pass);
+    return frame;
+}
+
+// Target rows 4 * (y W + x) + c: the layer un-premultiplied by coverage (clamped into [0, 1]
+// for 8-bit maps: what they can reach), weight conf · coverage.
+void AppendTarget(const MapInput& in, int width, int height, bool hdr, infer::Target* t) {
+    const size_t n = static_cast<size_t>(width) * static_cast<size_t>(height);
+    const size_t first = t->b.size();
+    t->b.resize(first + n * 4, 0.0);
+    t->confidence.resize(first + n * 4, 0.0);
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            const size_t p =
+                static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x);
+            const double cov = static_cast<double>(in.coverage->At(x, y)[3]);
+            if (!(cov > 1e-6)) continue;
+            const double conf =
+                in.confidence ? static_cast<double>(in.confidence->At(x, y)[0]) : 1.0;
+            for (size_t c = 0; c < 4; ++c) {
+                const double v = static_cast<double>(in.layer->At(x, y)[c]) / cov;
+                t->b[first + 4 * p + c] = hdr ? v : std::clamp(v, 0.0, 1.0);
+                t->confidence[first + 4 * p + c] = in.weight * conf * cov;
+            }
+        }
+}
+
+// Every observation's rows stacked, the first one's frame describing the unknown texture.
+struct StackedRows {
+    raster::RenderingMatrix a;
+    infer::Target target;
+    raster::Frame frame;                                 // the first observation's
+    std::vector<std::pair<raster::Frame, int64_t>> own;  // the sample's own frames, first row
+};
+
+StackedRows StackRows(const std::vector<MapInput>& inputs, int w, int h,
+                      const InferJobOptions& opt) {
+    StackedRows s;
+    raster::RenderOptions ro;
+    ro.profile = raster::Profile::Linear;
+    ro.threads = opt.threads;
+    for (size_t k = 0; k < inputs.size(); ++k) {
+        raster::Frame f = UnknownFrame(w, h, opt.res, inputs[k].pass);
+        raster::RenderingMatrix a = raster::BuildRenderingMatrix(raster::PreparedFrame(f), ro);
+        if (k == 0) {
+            s.a = std::move(a);
+            s.frame = f;
+        } else {
+            AppendRows(&s.a, a);
+        }
+        if (inputs[k].own) s.own.emplace_back(f, k == 0 ? 0 : s.a.rows - a.rows);
+        AppendTarget(inputs[k], w, h, opt.hdr, &s.target);
+    }
+    return s;
+}
+
+// Solving one map ----------------------------------------------------------------------------
+
+// The 8-bit copy of a map through the llvmpipe profile on the sample's own rows of the mask:
+// the error the hardware shows.
+double Rmse8(const infer::CubeMapF& m, const StackedRows& s, const infer::LinearSystem& sys,
+             int64_t frameRows, int threads) {
+    const raster::Texture tex8 = infer::ToTexture8(m, s.frame.textures[0].sampler);
+    raster::RenderOptions fo;
+    fo.threads = threads;
+    double sum = 0.0, weight = 0.0;
+    for (const auto& [ownFrame, first] : s.own) {
+        raster::Frame f8 = ownFrame;
+        f8.textures[0] = tex8;
+        const raster::RenderResult rr = raster::Render(raster::PreparedFrame(f8), fo);
+        for (int64_t r : sys.imageRowOf) {
+            if (r < first || r >= first + frameRows) continue;  // this observation's rows
+            weight += s.target.confidence[static_cast<size_t>(r)];
+            const double d = rr.image8.rgba[static_cast<size_t>(r - first)] / 255.0 -
+                             s.target.b[static_cast<size_t>(r)];
+            sum += s.target.confidence[static_cast<size_t>(r)] * d * d;
+        }
+    }
+    return weight > 0.0 ? std::sqrt(sum / weight) : 0.0;
+}
+
+// |K x - h|² of a solution.
+double Objective(const infer::LinearSystem& sys, const Vector& x, int threads) {
+    Vector kx;
+    sys.k.Apply(x, &kx, threads);
+    double obj = 0.0;
+    for (size_t r = 0; r < kx.size(); ++r) obj += (kx[r] - sys.h[r]) * (kx[r] - sys.h[r]);
+    return obj;
+}
+
+MapReport SolveMap(const std::vector<MapInput>& inputs, const InferJobOptions& opt,
+                   const TraceManifest& tm, const std::string& dir, MapReport rep) {
+    // Step 1: the rendering matrices of the texgen passes and the stacked system.
+    const auto t0 = Clock::now();
+    const StackedRows s = StackRows(inputs, tm.width, tm.height, opt);
+    rep.matrixSeconds = Since(t0);
+    const infer::LinearSystem sys =
+        infer::BuildSystem(s.a, s.frame, 0, s.target, opt.weights, opt.system);
+    rep.buildSeconds = Since(t0);
+    rep.rows = sys.k.Rows(), rep.cols = sys.Cols(), rep.nnz = sys.k.A().NonZeros();
+    rep.observedTexels = static_cast<int64_t>(sys.active.size());
+    // Step 2: the solve.
+    infer::SolveOptions so = opt.solve;
+    so.threads = opt.threads;
+    so.bounds = opt.hdr ? infer::Bounds::Hdr() : infer::Bounds::Unit();
+    const infer::SolveResult res = infer::SolveIterative(
+        sys, infer::SplatGuess(sys, so.bounds.lo, so.bounds.hi, opt.threads), so);
+    rep.solveSeconds = res.seconds, rep.iterations = res.iterations;
+    rep.stop = infer::ToString(res.stop);
+    rep.rmse = infer::MaskedImageRmse(sys, res.x, opt.threads);
+    rep.objective = Objective(sys, res.x, opt.threads);
+    // Step 3: the texels no pixel samples, and the range.
+    const auto tFill = Clock::now();
+    const Vector full = infer::FillUnobserved(sys, res.x, &rep.filledTexels);
+    const infer::CubeMapF map = infer::CubeMapFromSolution(full, sys.layout);
+    rep.texelMin = rep.texelMax = full.empty() ? 0.0 : full[0];
+    for (double v : full)
+        rep.texelMin = std::min(rep.texelMin, v), rep.texelMax = std::max(rep.texelMax, v);
+    rep.fillSeconds = Since(tFill);
+    // Step 4: rmse_8bit (and the direct optimum's, when asked and small enough).
+    const int64_t frameRows = int64_t{4} * tm.width * tm.height;
+    const auto tRender = Clock::now();
+    rep.rmse8 = Rmse8(map, s, sys, frameRows, opt.threads);
+    rep.renderSeconds = Since(tRender);
+    if (opt.direct && sys.Cols() <= opt.directMaxCols) {
+        const infer::SolveResult d =
+            infer::SolveDirect(sys, infer::InitialGuess(sys), so.columnFloor);
+        rep.directSeconds = d.seconds;
+        rep.directRmse8 =
+            Rmse8(infer::CubeMapFromSolution(infer::FillUnobserved(sys, d.x), sys.layout), s, sys,
+                  frameRows, opt.threads);
+    }
+    // Step 5: files.
+    const auto tWrite = Clock::now();
+    WriteMapFiles(map, s.frame.textures[0].sampler, res, dir + "/" + rep.name, opt.threads);
+    if (!opt.exportDir.empty()) ExportSystem(opt.exportDir, rep, sys, res.x, opt.hdr);
+    rep.writeSeconds = Since(tWrite);
+    return rep;
+}
+
+// The geometry of the samples in a solve ---------------------------------------------------
+
+// One sample's view of a lens group: vertex paths, draw order, projection and the traced
+// images of each term.
+struct ViewGeometry {
+    int view = 0;
+    raster::Camera camera;
+    runtime::LensPaths lp;
+    std::vector<uint32_t> order;
+    glm::mat4 vp{1.0f};
+    double weight = 1.0;
+    trace::FloatImage cov[2], conf[2];  // per term: b_τ (alpha = coverage), confidence_τ
+    std::vector<runtime::ExitRay> exits[2];
+};
+
+struct Context {
+    const InferJobOptions& opt;
+    const TraceManifest& tm;
+    const trace::Scene& scene;
+    const trace::EmbreeScene& embree;
+    const trace::Tracer& tracer;
+    std::vector<raster::Camera> cameras;  // per sample, as traced
+    InferJobResult* result;
+    int mapsDone = 0, mapsTotal = 0;
+
+    void Progress(const std::string& name) const {
+        if (opt.progress) opt.progress(name, static_cast<double>(mapsDone) / mapsTotal);
+    }
+};
+
+ViewGeometry SampleGeometry(const Context& c, int u, int group, int terms, double weight,
+                            SampleReport* sample) {
+    const auto t0 = Clock::now();
+    ViewGeometry vg;
+    vg.view = u;
+    vg.camera = c.cameras[static_cast<size_t>(u)];
+    runtime::LensPathsOptions lo;
+    lo.tess.maxEdgeSubpixels = c.opt.tessT;
+    lo.supersampling = c.tm.spp;
+    lo.threads = c.opt.threads;
+    vg.lp = runtime::TraceLensPaths(c.tracer, c.embree, vg.camera, group, lo);
+    const runtime::PassMesh m = runtime::MeshOf(vg.lp.tess);
+    vg.order = runtime::DrawOrder(m, vg.camera);
+    vg.vp = runtime::PassViewProjection(m, vg.camera);
+    vg.weight = weight;
+    sample->pathSeconds += Since(t0);
+    sample->vertexRays += vg.lp.counts.Total();
+    for (int term = 0; term < terms; ++term) {
+        const std::string tn = runtime::TermName(term);
+        vg.cov[term] = trace::ReadExr(GroupImagePath(c.tm.dir, u, group, "b_" + tn));
+        vg.conf[term] = trace::ReadExr(GroupImagePath(c.tm.dir, u, group, "confidence_" + tn));
+        vg.exits[term] = runtime::TermExits(vg.lp.tess.paths, term);
+    }
+    return vg;
+}
+
+// The sample's own view first, then its neighbours in the simultaneous solve.
+std::vector<ViewGeometry> SolveGeometry(const Context& c, int v, const runtime::LensGroupEm& g,
+                                        SampleReport* sample) {
+    std::vector<ViewGeometry> geo;
+    geo.push_back(SampleGeometry(c, v, g.index, g.Terms(), 1.0, sample));
+    sample->triangles += geo[0].lp.tess.triangles.size();
+    for (int u = v - c.opt.neighbours; u <= v + c.opt.neighbours; ++u)
+        if (u != v && u >= 0 && u < static_cast<int>(c.cameras.size()))
+            geo.push_back(SampleGeometry(c, u, g.index, g.Terms(), c.opt.neighbourWeight, sample));
+    return geo;
+}
+
+// The maps of one lens group ---------------------------------------------------------------
+
+// Observations of a map on `shell`: per term and view, images[term][view] as the target.
+std::vector<MapInput> Observations(const std::vector<ViewGeometry>& geo, int terms, int v,
+                                   const std::vector<std::vector<const trace::FloatImage*>>& images,
+                                   const trace::Shell& shell, const glm::vec3& emOrigin) {
+    std::vector<MapInput> inputs;
+    for (int term = 0; term < terms; ++term)
+        for (size_t k = 0; k < geo.size(); ++k) {
+            const ViewGeometry& vg = geo[k];
+            MapInput in{images[static_cast<size_t>(term)][k],
+                        &vg.cov[term],
+                        &vg.conf[term],
+                        {},
+                        vg.weight,
+                        vg.view == v};
+            in.pass = runtime::LayerPass(runtime::MeshOf(vg.lp.tess), vg.order,
+                                         runtime::ShellCoords(vg.exits[term], shell, emOrigin),
+                                         vg.exits[term], vg.vp, {});
+            inputs.push_back(std::move(in));
+        }
+    return inputs;
+}
+
+void Solve(Context& c, const std::vector<MapInput>& inputs, const std::string& dir,
+           const MapReport& rep) {
+    c.Progress(rep.name);
+    c.result->maps.push_back(SolveMap(inputs, c.opt, c.tm, dir, rep));
+    ++c.mapsDone;
+}
+
+MapReport Report(int v, const runtime::LensGroupEm& g, int layer, const std::string& term,
+                 const std::string& name) {
+    MapReport rep;
+    rep.view = v, rep.group = g.index, rep.layer = layer, rep.term = term, rep.name = name;
+    return rep;
+}
+
+// One map per layer over both terms, [A_R; A_T] x = [b_R; b_T] (hybrid §4.3), with the rows of
+// every view in `geo`; then the single-layer map (the whole exit radiance b_τ on one sphere).
+void SolveLayerMaps(Context& c, int v, const runtime::LensGroupEm& g,
+                    const std::vector<ViewGeometry>& geo, const std::string& odir) {
+    const std::string term = g.glass ? "R+T" : "R";
+    for (size_t l = 0; l < g.layers.size(); ++l) {
+        if (g.layers[l].Empty()) {  // an empty cluster: no hits to match
+            c.result->leftOut.push_back(
+                {v, g.index, "layer " + std::to_string(l), "its cluster is empty"});
+            ++c.mapsDone;
+            continue;
+        }
+        std::vector<trace::FloatImage> owned;
+        owned.reserve(geo.size() * 2);
+        std::vector<std::vector<const trace::FloatImage*>> images(2);
+        for (int t = 0; t < g.Terms(); ++t)
+            for (const ViewGeometry& vg : geo)
+                images[static_cast<size_t>(t)].push_back(
+                    &owned.emplace_back(trace::ReadExr(GroupImagePath(
+                        c.tm.dir, vg.view, g.index, LayerImageName(static_cast<int>(l), t)))));
+        Solve(c, Observations(geo, g.Terms(), v, images, g.layers[l].shell, g.emOrigin), odir,
+              Report(v, g, static_cast<int>(l), term, LayerMapName(static_cast<int>(l))));
+    }
+    if (!c.opt.single) return;
+    std::vector<std::vector<const trace::FloatImage*>> images(2);
+    for (int t = 0; t < g.Terms(); ++t)
+        for (const ViewGeometry& vg : geo) images[static_cast<size_t>(t)].push_back(&vg.cov[t]);
+    Solve(c, Observations(geo, g.Terms(), v, images, runtime::SingleLayerShell(g), g.emOrigin),
+          odir, Report(v, g, 0, term, "single"));
+}
+
+// Mirror-only groups: the PEM paper's local/distant split on the model's own vertices; a
+// reflector whose polygons all lie on its convex hull cannot see itself: no local layer.
+void SolvePemMaps(Context& c, int v, const runtime::LensGroupEm& g, const std::string& odir) {
+    const runtime::MirrorGeometry m =
+        runtime::MakeMirrorGeometry(c.scene, g.index, c.cameras[static_cast<size_t>(v)]);
+    const trace::FloatImage distant =
+        trace::ReadExr(GroupImagePath(c.tm.dir, v, g.index, "distant"));
+    const trace::FloatImage local = trace::ReadExr(GroupImagePath(c.tm.dir, v, g.index, "local"));
+    const trace::FloatImage conf =
+        trace::ReadExr(GroupImagePath(c.tm.dir, v, g.index, "confidence_R"));
+    const bool convex = runtime::AllOnHull(runtime::HullTriangles(m.mesh));
+    if (convex) {
+        c.result->leftOut.push_back(
+            {v, g.index, "PEM local layer", "every polygon lies on the reflector's convex hull"});
+        ++c.mapsDone;
+    }
+    for (int which = convex ? 1 : 0; which < 2; ++which) {
+        const trace::Shell& shell = which == 0 ? g.localShell : g.distantShell;
+        MapInput in{which == 0 ? &local : &distant, &distant, &conf, {}, 1.0, true};
+        in.pass =
+            runtime::LayerPass(m.Pass(), m.order, runtime::ShellCoords(m.exits, shell, g.emOrigin),
+                               m.exits, m.viewProjection, {});
+        Solve(c, {in}, odir, Report(v, g, which, "pem", which == 0 ? "pem_local" : "pem_distant"));
+    }
+}
+
+// RunInferJob -------------------------------------------------------------------------------
+
+SampleReport InferSample(Context& c, int v) {
+    const auto t0 = Clock::now();
+    SampleReport sample;
+    sample.view = v;
+    for (const runtime::LensGroupEm& g : c.tm.groups) {
+        const std::string odir = GroupDir(c.opt.outDir, v, g.index);
+        std::filesystem::create_directories(odir);
+        const std::vector<ViewGeometry> geo = SolveGeometry(c, v, g, &sample);
+        SolveLayerMaps(c, v, g, geo, odir);
+        if (g.pem) SolvePemMaps(c, v, g, odir);
+    }
+    sample.seconds = Since(t0);
+    return sample;
+}
+
+std::vector<int> SamplesToInfer(const InferJobOptions& opt, const TraceManifest& tm) {
+    std::vector<int> views = opt.views;
+    if (views.empty())
+        for (int v = 0; v < static_cast<int>(tm.views.size()); ++v) views.push_back(v);
+    for (int v : views)
+        if (v < 0 || v >= static_cast<int>(tm.views.size()))
+            throw base::InputError("--view " + std::to_string(v), "no such viewpoint in the trace");
+    return views;
+}
+
+}  // namespace
+
+InferJobResult RunInferJob(const InferJobOptions& opt) {
+    const auto tStart = Clock::now();
+    if (opt.res < 1 || (opt.res & (opt.res - 1)) != 0 || opt.res > 4096)
+        throw base::InputError("--res " + std::to_string(opt.res),
+                               "expected a power of two in [1, 4096]");
+    InferJobResult result;
+    result.trace = ReadTraceManifest(opt.traceDir);
+    const TraceManifest& tm = result.trace;
+    // Step 1: the scene, its BVH and the tracer (as the trace was made).
+    const std::string scenePath = ResolveScene(tm.dir, tm.scene, tm.sceneGiven);
+    if (!std::filesystem::exists(scenePath))
+        throw base::InputError(scenePath, "scene of the trace not found");
+    const trace::Scene scene = trace::LoadScene(scenePath);
+    if (scene.lensGroups.size() != tm.groups.size())
+        throw base::InputError(opt.traceDir + "/" + kTraceJson,
+                               "lens groups differ from the scene's");
+    const trace::EmbreeDevice device({opt.threads, "auto"});
+    const trace::EmbreeScene embree(device, scene);
+    const trace::Tracer tracer(scene, embree);
+    // Step 2: every sample, one after the other.
+    const std::vector<int> views = SamplesToInfer(opt, tm);
+    Context c{opt, tm, scene, embree, tracer, LegacyCameras(scene, tm.Cameras()), &result, 0, 0};
+    for (const runtime::LensGroupEm& g : tm.groups)
+        c.mapsTotal += static_cast<int>(g.layers.size()) + (opt.single ? 1 : 0) + (g.pem ? 2 : 0);
+    c.mapsTotal *= static_cast<int>(views.size());
+    for (int v : views) result.samples.push_back(InferSample(c, v));
+    if (opt.progress) opt.progress("done", 1.0);
+    result.seconds = Since(tStart);
+    return result;
+}
+
+void WriteInferOutputs(const InferJobOptions& o, const InferJobResult& r) {
+    InferRecord rec;
+    rec.dir = o.outDir;
+    rec.traceDir = o.traceDir;
+    rec.res = o.res, rec.threads = o.threads, rec.neighbours = o.neighbours, rec.hdr = o.hdr;
+    rec.lambda = o.weights;
+    rec.seconds = r.seconds;
+    rec.samples = r.samples;
+    rec.maps = r.maps;
+    rec.leftOut = r.leftOut;
+    WriteInferJson(rec);
+    WritePemManifest(PemManifestFor(r.trace, o.outDir, o.res, o.hdr, o.views));
+}
+
+}  // namespace pem::pipeline

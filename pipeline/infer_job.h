@@ -1,0 +1,79 @@
+// SPDX-License-Identifier: MIT
+// infer_job.h — the whole `pemref infer` job: a trace directory in, one environment map per
+// (viewpoint sample, lens group, layer) out, every MIP level, with the figures infer.json
+// reports (infer_report.h).
+//
+//   InferJobOptions o;  o.traceDir = "out/trace";  o.outDir = "out/pem";
+//   InferJobResult r = RunInferJob(o);       // the maps
+//   WriteInferOutputs(o, r);                 // + infer.json and manifest.json
+//
+// For each viewpoint sample and lens group: the group's mesh adaptively tessellated at the
+// sample (runtime/lens_paths.h), and per layer l one map `layer_l` for both terms (hybrid §4.3:
+// [A_R; A_T] x = [b_R; b_T]): per term τ the texgen pass (runtime/texgen.h) that looks the
+// layer's cube map up at each vertex's exit-ray hit on the layer's shell; raster/'s rendering
+// matrix of that pass (linear profile: llvmpipe's texel selection and weights); the target =
+// the traced layer image layer_l_τ un-premultiplied by the lens coverage (b_τ's alpha),
+// weighted by confidence_τ × coverage; the terms' rows stacked; infer::BuildSystem with the
+// active texels (observed + rings), LSMR with bounds ([0, 1] or HDR), FillUnobserved, files.
+// `single`: one more map, `single`, from the whole exit radiance b_τ on one sphere.
+// With `neighbours` = k, the layer maps' systems also hold the rows of the k samples on each side
+// (their own vertex paths, texgen and traced layer images, confidence × neighbourWeight): the
+// simultaneous solve of hybrid §4.3, so a map also fits what is seen just off its sample.
+// Mirror-only groups also get the PEM paper's split (runtime/mirror_geometry.h): `local` on the
+// ellipsoid shell and `distant` on the box.
+// Files per map under outDir (layout.h): <map>.exr (tiled mip-mapped cube, infer/pem_file.h),
+// <map>.png (the 8-bit copy: level l's six faces side by side, levels stacked), <map>.csv (the
+// solve log); --export-system writes per map <dir>/v<vvv>_g<g>_<map>_{K,h,x}.mtx + .json.
+// Not here: argument parsing (viewer_tty/cli/cmd_infer.cpp), rendering (runtime/renderer.h).
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "infer/problem.h"
+#include "infer/solver.h"
+#include "pipeline/infer_report.h"
+#include "pipeline/trace_manifest.h"
+
+namespace pem::pipeline {
+
+// The maps' face size when none is asked for (infer, bake, demo).
+inline constexpr int kDefaultMapResolution = 128;
+
+// LSMR with at most 150 iterations and atol 1e-4, a log line every 25 iterations: what every
+// pipeline solve uses unless told otherwise.
+infer::SolveOptions DefaultSolveOptions();
+
+struct InferJobOptions {
+    std::string traceDir, outDir, exportDir;
+    int res = kDefaultMapResolution;
+    int threads = 1;
+    bool hdr = false;              // float radiance, bounds [0, inf)
+    double tessT = 5.0;            // tessellation t in subpixels (1 / spp pixels)
+    std::vector<int> views;        // empty: all
+    bool single = false;           // also the single-layer map (`single`, both terms)
+    int neighbours = 0;            // samples on each side in the simultaneous solve (hybrid §4.3)
+    double neighbourWeight = 0.5;  // their rows' confidence factor
+    bool direct = false;           // also solve with the direct oracle (when it fits)
+    int64_t directMaxCols = 400000;  // unknowns (4 per texel) the direct solver may take
+    infer::RegularizerWeights weights;
+    infer::SystemOptions system{2};
+    infer::SolveOptions solve = DefaultSolveOptions();
+    std::function<void(const std::string& stage, double fraction)> progress;
+};
+
+struct InferJobResult {
+    TraceManifest trace;
+    std::vector<MapReport> maps;
+    std::vector<SampleReport> samples;
+    std::vector<LeftOut> leftOut;
+    double seconds = 0.0;
+};
+
+InferJobResult RunInferJob(const InferJobOptions& options);
+
+// infer.json and manifest.json of a finished `pemref infer`.
+void WriteInferOutputs(const InferJobOptions& options, const InferJobResult& result);
+
+}  // namespace pem::pipeline

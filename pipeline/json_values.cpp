@@ -1,0 +1,147 @@
+// SPDX-License-Identifier: MIT
+// json_values.cpp — JSON forms of cameras, shells and lens groups (json_values.h).
+#include "pipeline/json_values.h"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace pem::pipeline {
+namespace {
+
+double Finite(const json& j) {
+    const double v = j.get<double>();
+    if (!std::isfinite(v)) throw std::runtime_error("a number is not finite");
+    return v;
+}
+
+json LayerJson(const runtime::EmLayer& l) {
+    return {{"radius", l.radius},
+            {"records", l.records},
+            {"objects", l.objects},
+            {"occupancy", l.occupancy},
+            {"shell", ShellJson(l.shell)}};
+}
+
+runtime::EmLayer LayerFromJson(const json& j) {
+    runtime::EmLayer l;
+    l.shell = ShellFromJson(j.at("shell"));
+    l.kind = j.at("shell").at("type").get<std::string>();
+    l.radius = Finite(j.at("radius"));
+    l.records = j.at("records").get<int64_t>();
+    l.objects = j.at("objects").get<std::vector<std::string>>();
+    l.occupancy = Finite(j.at("occupancy"));
+    return l;
+}
+
+}  // namespace
+
+json Vec3Json(const glm::dvec3& v) {
+    return json::array({v.x, v.y, v.z});
+}
+
+glm::dvec3 Vec3FromJson(const json& j) {
+    if (!j.is_array() || j.size() != 3) throw std::runtime_error("expected [x, y, z]");
+    return {Finite(j.at(0)), Finite(j.at(1)), Finite(j.at(2))};
+}
+
+json CameraJson(const raster::Camera& c) {
+    return {{"eye", Vec3Json(glm::dvec3(c.eye))},
+            {"target", Vec3Json(glm::dvec3(c.target))},
+            {"up", Vec3Json(glm::dvec3(c.up))},
+            {"fov_y_radians", static_cast<double>(c.fovYRadians)},
+            {"size", {c.width, c.height}}};
+}
+
+raster::Camera CameraFromJson(const json& j) {
+    raster::Camera c;
+    c.eye = glm::vec3(Vec3FromJson(j.at("eye")));
+    c.target = glm::vec3(Vec3FromJson(j.at("target")));
+    c.up = glm::vec3(Vec3FromJson(j.at("up")));
+    c.fovYRadians = static_cast<float>(Finite(j.at("fov_y_radians")));
+    c.width = j.at("size").at(0).get<int>();
+    c.height = j.at("size").at(1).get<int>();
+    if (c.width < 1 || c.height < 1 || c.width > 16384 || c.height > 16384)
+        throw std::runtime_error("camera size out of range");
+    if (!(c.fovYRadians > 0.0f && c.fovYRadians < 3.14159f))
+        throw std::runtime_error("camera field of view out of range");
+    if (!(glm::length(c.target - c.eye) > 0.0f)) throw std::runtime_error("camera eye = target");
+    return c;
+}
+
+json ShellJson(const trace::Shell& shell) {
+    if (const auto* s = std::get_if<trace::SphereShell>(&shell))
+        return {{"type", "sphere"}, {"centre", Vec3Json(s->centre)}, {"radius", s->radius}};
+    if (const auto* q = std::get_if<trace::QuadShell>(&shell))
+        return {{"type", "quad"},
+                {"centre", Vec3Json(q->centre)},
+                {"normal", Vec3Json(q->normal)},
+                {"u", Vec3Json(q->u)},
+                {"v", Vec3Json(q->v)},
+                {"half_extent", {q->halfExtent.x, q->halfExtent.y}}};
+    if (const auto* e = std::get_if<trace::EllipsoidShell>(&shell))
+        return {
+            {"type", "ellipsoid"}, {"centre", Vec3Json(e->centre)}, {"radii", Vec3Json(e->radii)}};
+    if (const auto* b = std::get_if<trace::BoxShell>(&shell))
+        return {{"type", "box"}, {"min", Vec3Json(b->min)}, {"max", Vec3Json(b->max)}};
+    return {{"type", "cylinder"}};
+}
+
+trace::Shell ShellFromJson(const json& j) {
+    const std::string type = j.at("type").get<std::string>();
+    if (type == "sphere")
+        return trace::SphereShell{Vec3FromJson(j.at("centre")), Finite(j.at("radius"))};
+    if (type == "ellipsoid")
+        return trace::EllipsoidShell{Vec3FromJson(j.at("centre")), Vec3FromJson(j.at("radii"))};
+    if (type == "box") return trace::BoxShell{Vec3FromJson(j.at("min")), Vec3FromJson(j.at("max"))};
+    if (type == "quad") {
+        trace::QuadShell q;
+        q.centre = Vec3FromJson(j.at("centre"));
+        q.normal = Vec3FromJson(j.at("normal"));
+        q.u = Vec3FromJson(j.at("u"));
+        q.v = Vec3FromJson(j.at("v"));
+        q.halfExtent = {Finite(j.at("half_extent").at(0)), Finite(j.at("half_extent").at(1))};
+        return q;
+    }
+    throw std::runtime_error("unknown shell type \"" + type + "\"");
+}
+
+json LensGroupJson(const runtime::LensGroupEm& g) {
+    json layers = json::array();
+    for (const runtime::EmLayer& l : g.layers) layers.push_back(LayerJson(l));
+    json j = {{"objects", g.objects},
+              {"glass", g.glass},
+              {"terms", g.glass ? json::array({"R", "T"}) : json::array({"R"})},
+              {"em_origin", Vec3Json(glm::dvec3(g.emOrigin))},
+              {"records", g.records},
+              {"lbg_iterations", g.lbgIterations},
+              {"lbg_converged", g.lbgConverged},
+              {"layers", layers}};
+    if (g.pem)
+        j["pem_local_distant"] = {{"local", ShellJson(g.localShell)},
+                                  {"distant", ShellJson(g.distantShell)},
+                                  {"distant_mean_distance", g.distantMeanDistance}};
+    return j;
+}
+
+runtime::LensGroupEm LensGroupFromJson(const json& j, int index) {
+    runtime::LensGroupEm g;
+    g.index = index;
+    g.objects = j.at("objects").get<std::vector<std::string>>();
+    g.glass = j.at("glass").get<bool>();
+    g.emOrigin = glm::vec3(Vec3FromJson(j.at("em_origin")));
+    g.records = j.at("records").get<int64_t>();
+    g.lbgIterations = j.at("lbg_iterations").get<int>();
+    g.lbgConverged = j.at("lbg_converged").get<bool>();
+    for (const json& l : j.at("layers")) g.layers.push_back(LayerFromJson(l));
+    if (j.contains("pem_local_distant")) {
+        const json& p = j.at("pem_local_distant");
+        g.pem = true;
+        g.localShell = ShellFromJson(p.at("local"));
+        g.distantShell = ShellFromJson(p.at("distant"));
+        g.distantMeanDistance = Finite(p.at("distant_mean_distance"));
+    }
+    return g;
+}
+
+}  // namespace pem::pipeline

@@ -1,0 +1,104 @@
+// SPDX-License-Identifier: MIT
+// pem_manifest.cpp — manifest.json (pem_manifest.h).
+#include "pipeline/pem_manifest.h"
+
+#include "base/atomic_file.h"
+#include "base/input_error.h"
+#include "pipeline/json_values.h"
+#include "pipeline/layout.h"
+
+namespace pem::pipeline {
+namespace {
+
+constexpr const char* kFormat = "pemref_pem";
+constexpr int kVersion = 2;
+
+json ManifestJson(const PemManifest& m) {
+    json views = json::array(), groups = json::array();
+    for (const raster::Camera& c : m.views) views.push_back(CameraJson(c));
+    for (const runtime::LensGroupEm& g : m.groups) groups.push_back(LensGroupJson(g));
+    return {{"format", kFormat},
+            {"version", kVersion},
+            {"scene", m.scene},
+            {"scene_given", m.sceneGiven},
+            {"trace_dir", m.traceDir},
+            {"trace_dir_given", m.traceDirGiven},
+            {"size", {m.width, m.height}},
+            {"spp", m.spp},
+            {"res", m.res},
+            {"profile", m.profile},
+            {"hdr", m.hdr},
+            {"views", views},
+            {"inferred_views", m.inferred},
+            {"lens_groups", groups}};
+}
+
+void CheckFormat(const json& j) {
+    if (j.value("format", "") == "pemref_pem/1")
+        throw std::runtime_error("written by an older pemref (pemref_pem/1): infer again");
+    if (j.value("format", "") != kFormat) throw std::runtime_error("not a pemref manifest.json");
+    if (j.at("version") != kVersion)
+        throw std::runtime_error("version " + j.at("version").dump() + ", expected " +
+                                 std::to_string(kVersion) + ": infer again");
+}
+
+PemManifest ManifestFromJson(const json& j) {
+    CheckFormat(j);
+    PemManifest m;
+    m.scene = j.at("scene").get<std::string>();
+    m.sceneGiven = j.at("scene_given").get<std::string>();
+    m.traceDir = j.at("trace_dir").get<std::string>();
+    m.traceDirGiven = j.at("trace_dir_given").get<std::string>();
+    m.width = j.at("size").at(0).get<int>();
+    m.height = j.at("size").at(1).get<int>();
+    m.spp = j.at("spp").get<int>();
+    m.res = j.at("res").get<int>();
+    m.profile = j.at("profile").get<std::string>();
+    m.hdr = j.at("hdr").get<bool>();
+    for (const json& v : j.at("views")) m.views.push_back(CameraFromJson(v));
+    m.inferred = j.at("inferred_views").get<std::vector<int>>();
+    int index = 0;
+    for (const json& g : j.at("lens_groups")) m.groups.push_back(LensGroupFromJson(g, index++));
+    if (m.views.empty() || m.inferred.empty()) throw std::runtime_error("no viewpoint samples");
+    for (int v : m.inferred)
+        if (v < 0 || v >= static_cast<int>(m.views.size()))
+            throw std::runtime_error("inferred_views names a sample that does not exist");
+    return m;
+}
+
+}  // namespace
+
+PemManifest PemManifestFor(const TraceManifest& trace, const std::string& pemDir, int res, bool hdr,
+                           const std::vector<int>& inferred) {
+    PemManifest m;
+    m.dir = pemDir;
+    const std::string scene = ResolveScene(trace.dir, trace.scene, trace.sceneGiven);
+    m.scene = SceneForStorage(pemDir, scene);
+    m.sceneGiven = trace.sceneGiven;
+    m.traceDir = SceneForStorage(pemDir, trace.dir);
+    m.traceDirGiven = trace.dir;
+    m.width = trace.width;
+    m.height = trace.height;
+    m.spp = trace.spp;
+    m.res = res;
+    m.hdr = hdr;
+    m.views = trace.Cameras();
+    m.inferred = inferred;
+    if (m.inferred.empty())
+        for (int v = 0; v < static_cast<int>(m.views.size()); ++v) m.inferred.push_back(v);
+    m.groups = trace.groups;
+    return m;
+}
+
+void WritePemManifest(const PemManifest& m) {
+    base::WriteTextAtomic(m.dir + "/" + kManifestJson, ManifestJson(m).dump(2) + "\n");
+}
+
+PemManifest ReadPemManifest(const std::string& dir) {
+    PemManifest m =
+        ReadJsonFile(dir + "/" + kManifestJson, "run pemref infer first", ManifestFromJson);
+    m.dir = dir;
+    return m;
+}
+
+}  // namespace pem::pipeline

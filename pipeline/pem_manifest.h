@@ -1,0 +1,41 @@
+// SPDX-License-Identifier: MIT
+// pem_manifest.h — manifest.json, the record of a PEM directory: what a renderer needs to draw
+// from its maps (the scene, the viewpoint samples' cameras, the lens groups' EM geometry, the
+// maps' size and profile). Its one writer and its one reader, side by side.
+//
+//   PemManifest m = ReadPemManifest("out/pem");
+//
+// Format `pemref_pem`, version 2 (version 1 kept only eye and target of each camera: refused
+// with a message to infer again). Paths (the scene, the trace directory) are stored relative to
+// the PEM directory, with the paths as given beside them, so a baked directory can be moved.
+// Errors: base::InputError naming manifest.json and the cause.
+// Not here: the maps (pem_set.h), the figures of the solves (infer_report.h).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "pipeline/trace_manifest.h"
+
+namespace pem::pipeline {
+
+struct PemManifest {
+    std::string dir;  // the PEM directory (not stored)
+    std::string scene, sceneGiven;
+    std::string traceDir, traceDirGiven;
+    int width = 0, height = 0, spp = 1, res = 0;
+    std::string profile = "llvmpipe";
+    bool hdr = false;
+    std::vector<raster::Camera> views;  // every viewpoint sample of the trace
+    std::vector<int> inferred;          // the samples with maps
+    std::vector<runtime::LensGroupEm> groups;
+};
+
+// The manifest of maps inferred at `inferred` (empty: every sample) from `trace` into pemDir.
+PemManifest PemManifestFor(const TraceManifest& trace, const std::string& pemDir, int res, bool hdr,
+                           const std::vector<int>& inferred);
+
+void WritePemManifest(const PemManifest& manifest);  // dir/manifest.json
+PemManifest ReadPemManifest(const std::string& dir);
+
+}  // namespace pem::pipeline

@@ -1,0 +1,31 @@
+// SPDX-License-Identifier: MIT
+// pem_set.h — a PEM directory opened for drawing: manifest.json, the scene it was made from and
+// its 8-bit maps, loaded on first use and kept.
+//
+//   std::unique_ptr<runtime::Renderer> r = OpenPemDirectory("out/pem", /*threads=*/2);
+//   runtime::RenderedFrame f = r->Render(r->SampleCamera(0), {});
+//
+// Maps: view_v/group_g/<name>.exr (layout.h), read as float and converted to the hardware's
+// 8-bit copy (infer/cube_map.h ToTexture8) with the default sampler (trilinear, seamless).
+// The scene is found relative to the PEM directory first (pem_manifest.h), so a directory can
+// be moved or copied. Errors: base::InputError naming the file and the cause.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "pipeline/pem_manifest.h"
+#include "runtime/map_set.h"
+#include "runtime/renderer.h"
+
+namespace pem::pipeline {
+
+// The manifest's maps as a renderer sees them (runtime/map_set.h); the cameras as traced.
+runtime::MapSet LoadMapSet(const PemManifest& manifest);
+
+// The scene the directory was made from.
+trace::Scene LoadPemScene(const PemManifest& manifest);
+
+std::unique_ptr<runtime::Renderer> OpenPemDirectory(const std::string& pemDir, int threads);
+
+}  // namespace pem::pipeline

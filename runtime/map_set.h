@@ -1,0 +1,35 @@
+// SPDX-License-Identifier: MIT
+// map_set.h — what a renderer draws from: the viewpoint samples' cameras, the lens groups' EM
+// geometry and the 8-bit maps inferred at each sample. A PEM directory fills it
+// (pipeline/pem_set.h); tests fill it by hand.
+//
+//   MapSet m;  m.samples = {camera0, camera1};  m.inferred = {0, 1};  m.groups = {group};
+//   m.map = [&](int view, int group, const std::string& name) { return &textures.at(name); };
+//
+// Map names: layer_<l> (hybrid layers, l = 0 innermost, both terms), single (the single-layer
+// PEM) and pem_local / pem_distant (mirror-only groups, PEM mode). `map` returns nullptr for a
+// map that does not exist; the texture is the hardware's 8-bit copy with its sampler.
+// Not here: reading files (pipeline/), drawing (renderer.h).
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "raster/camera.h"
+#include "raster/frame.h"
+#include "runtime/lens_group_em.h"
+
+namespace pem::runtime {
+
+struct MapSet {
+    std::string name;                     // for messages: the PEM directory
+    std::vector<raster::Camera> samples;  // every viewpoint sample's camera, whole
+    std::vector<int> inferred;            // the samples that have maps (not empty)
+    std::vector<LensGroupEm> groups;      // one per scene lens group
+    int spp = 1;                          // the traced images' K×K sampling (t's unit)
+    int res = 0;                          // face size of the maps
+    std::function<const raster::Texture*(int view, int group, const std::string& name)> map;
+};
+
+}  // namespace pem::runtime

@@ -1,0 +1,227 @@
+// SPDX-License-Identifier: MIT
+// formats_test.cpp — every on-disk format of pipeline/ read back by its one reader gives what its
+// one writer was given (cameras bit for bit), old and malformed files are refused with one line
+// naming the file.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <limits>
+
+#include "base/input_error.h"
+#include "pipeline/infer_report.h"
+#include "pipeline/json_values.h"
+#include "pipeline/layout.h"
+#include "pipeline/pem_manifest.h"
+#include "pipeline/trace_manifest.h"
+#include "tests/pipeline/pipeline_test_util.h"
+
+namespace pem::pipeline {
+namespace {
+
+raster::Camera OddCamera() {
+    raster::Camera c;
+    c.eye = {0.1f, 1.0f / 3.0f, -7.25e-3f};
+    c.target = {std::nextafter(1.0f, 2.0f), -0.0f, 3e-8f};
+    c.up = {0.01f, 0.99995f, 0.0f};
+    c.fovYRadians = 0.6981317f;
+    c.width = 641, c.height = 479;
+    return c;
+}
+
+runtime::LensGroupEm SomeGroup(int index) {
+    runtime::LensGroupEm g;
+    g.index = index;
+    g.objects = {"teapot", "lid"};
+    g.glass = index == 0;
+    g.emOrigin = {0.25f, 0.45f, 1.0f / 7.0f};
+    g.records = 1234;
+    g.lbgIterations = 7;
+    g.lbgConverged = true;
+    runtime::EmLayer inner{"sphere", trace::SphereShell{{0.1, 0.2, 0.3}, 1.5}, 1.25, 99, {"a"},
+                           0.5};
+    trace::QuadShell q;
+    q.centre = {0.0, -0.5, 0.0};
+    q.normal = {0.0, 1.0, 0.0};
+    q.u = {1.0, 0.0, 0.0};
+    q.v = {0.0, 0.0, -1.0};
+    q.halfExtent = {3.0, 4.0};
+    runtime::EmLayer floor{"quad", q, 2.5, 0, {}, 0.0};
+    g.layers = {inner, floor};
+    if (!g.glass) {
+        g.pem = true;
+        g.localShell = trace::EllipsoidShell{{0.0, 0.5, 0.0}, {0.3, 0.4, 0.5}};
+        g.distantShell = trace::BoxShell{{-5.0, -0.5, -5.0}, {5.0, 4.0, 5.0}};
+        g.distantMeanDistance = 3.75;
+    }
+    return g;
+}
+
+void ExpectSameGroup(const runtime::LensGroupEm& a, const runtime::LensGroupEm& b) {
+    EXPECT_EQ(a.index, b.index);
+    EXPECT_EQ(a.objects, b.objects);
+    EXPECT_EQ(a.glass, b.glass);
+    EXPECT_EQ(a.emOrigin, b.emOrigin);
+    EXPECT_EQ(a.records, b.records);
+    ASSERT_EQ(a.layers.size(), b.layers.size());
+    for (size_t l = 0; l < a.layers.size(); ++l) {
+        EXPECT_TRUE(a.layers[l].shell == b.layers[l].shell) << l;
+        EXPECT_EQ(a.layers[l].kind, b.layers[l].kind);
+        EXPECT_EQ(a.layers[l].radius, b.layers[l].radius);
+        EXPECT_EQ(a.layers[l].records, b.layers[l].records);
+    }
+    EXPECT_EQ(a.pem, b.pem);
+    EXPECT_TRUE(a.localShell == b.localShell);
+    EXPECT_TRUE(a.distantShell == b.distantShell);
+}
+
+void WriteFile(const fs::path& path, const std::string& text) {
+    std::ofstream(path) << text;
+}
+
+// The one-line error a reader gives, or "" when it reads the file.
+template <class F>
+std::string ErrorOf(const F& read) {
+    try {
+        read();
+    } catch (const base::InputError& e) {
+        return e.what();
+    }
+    return "";
+}
+
+TEST(JsonValues, CameraRoundTripsBitForBit) {
+    const raster::Camera c = OddCamera();
+    const raster::Camera back = CameraFromJson(json::parse(CameraJson(c).dump()));
+    EXPECT_EQ(std::memcmp(&back, &c, sizeof c), 0);
+}
+
+TEST(JsonValues, CameraOutOfRangeRefused) {
+    json j = CameraJson(OddCamera());
+    j["fov_y_radians"] = 0.0;
+    EXPECT_ANY_THROW(CameraFromJson(j));
+    j = CameraJson(OddCamera());
+    j["eye"] = json::array({1.0, "x", 2.0});
+    EXPECT_ANY_THROW(CameraFromJson(j));
+    j = CameraJson(OddCamera());
+    j["target"] = j["eye"];
+    EXPECT_ANY_THROW(CameraFromJson(j));
+}
+
+TEST(JsonValues, LensGroupRoundTrips) {
+    for (int index : {0, 1}) {
+        const runtime::LensGroupEm g = SomeGroup(index);
+        ExpectSameGroup(LensGroupFromJson(json::parse(LensGroupJson(g).dump()), index), g);
+    }
+}
+
+TEST(TraceManifest, RoundTripsAndResolvesTheSceneAfterAMove) {
+    const fs::path dir = FreshDir("trace_manifest");
+    TraceManifest m;
+    m.dir = (dir / "a" / "trace").string();
+    fs::create_directories(m.dir);
+    fs::copy_file(kMirrorSphere, dir / "a" / "scene.gltf");
+    m.scene = SceneForStorage(m.dir, (dir / "a" / "scene.gltf").string());
+    m.sceneGiven = "somewhere/scene.gltf";
+    m.width = 64, m.height = 48, m.spp = 3;
+    m.views.push_back({OddCamera(), 1.0, 2.0, {1, 2, 3}, {}, {}, {}, {0.5, 20.0, 10}, {}, {}, {}});
+    m.views[0].lens.psnr = std::numeric_limits<double>::infinity();
+    m.groups = {SomeGroup(0), SomeGroup(1)};
+    WriteTraceManifest(m);
+    EXPECT_EQ(m.scene, "../scene.gltf");
+    // Moved: the directory and its scene together.
+    fs::rename(dir / "a", dir / "b");
+    const TraceManifest r = ReadTraceManifest((dir / "b" / "trace").string());
+    EXPECT_EQ(ResolveScene(r.dir, r.scene, r.sceneGiven),
+              (dir / "b" / "scene.gltf").lexically_normal().string());
+    ASSERT_EQ(r.views.size(), 1u);
+    EXPECT_EQ(std::memcmp(&r.views[0].camera, &m.views[0].camera, sizeof(raster::Camera)), 0);
+    EXPECT_EQ(r.views[0].reference.secondary, 2u);
+    EXPECT_TRUE(std::isinf(r.views[0].lens.psnr));
+    ASSERT_EQ(r.groups.size(), 2u);
+    ExpectSameGroup(r.groups[1], m.groups[1]);
+    fs::remove_all(dir);
+}
+
+TEST(TraceManifest, OldAndMalformedFilesRefusedNamingTheFile) {
+    const fs::path dir = FreshDir("trace_bad");
+    const std::string path = (dir / kTraceJson).string();
+    WriteFile(path, R"({"scene": "x.gltf", "size": "64x48", "views": [{"eye": [0,0,1]}]})");
+    EXPECT_NE(ErrorOf([&] { ReadTraceManifest(dir.string()); }).find(path + ": "),
+              std::string::npos);
+    EXPECT_NE(ErrorOf([&] { ReadTraceManifest(dir.string()); }).find("trace again"),
+              std::string::npos);
+    WriteFile(path, "{\"format\": \"pemref_trace\", \"version\": 2, \"scene\": ");
+    EXPECT_EQ(ErrorOf([&] { ReadTraceManifest(dir.string()); }).rfind(path + ": ", 0), 0u);
+    fs::remove(path);
+    EXPECT_NE(ErrorOf([&] { ReadTraceManifest(dir.string()); }).find("cannot open"),
+              std::string::npos);
+    fs::remove_all(dir);
+}
+
+TEST(PemManifest, RoundTripsFromATrace) {
+    const fs::path dir = FreshDir("pem_manifest");
+    TraceManifest t;
+    t.dir = (dir / "trace").string();
+    t.scene = SceneForStorage(t.dir, kMirrorSphere);
+    t.sceneGiven = kMirrorSphere;
+    t.width = 64, t.height = 48, t.spp = 2;
+    t.views = {{OddCamera(), 0, 0, {}, {}, {}, {}, {}, {}, {}, {}}};
+    t.groups = {SomeGroup(1)};  // a mirror-only group, the scene's first
+    t.groups[0].index = 0;
+    PemManifest m = PemManifestFor(t, (dir / "pem").string(), 32, false, {});
+    fs::create_directories(m.dir);
+    WritePemManifest(m);
+    const PemManifest r = ReadPemManifest(m.dir);
+    EXPECT_EQ(r.inferred, std::vector<int>{0});
+    EXPECT_EQ(r.res, 32);
+    EXPECT_EQ(r.spp, 2);
+    ASSERT_EQ(r.views.size(), 1u);
+    EXPECT_EQ(std::memcmp(&r.views[0], &t.views[0].camera, sizeof(raster::Camera)), 0);
+    EXPECT_EQ(ResolveScene(r.dir, r.scene, r.sceneGiven),
+              fs::path(kMirrorSphere).lexically_normal().string());
+    ExpectSameGroup(r.groups[0], t.groups[0]);
+    // The first manifest format is refused with what to do.
+    WriteFile(fs::path(m.dir) / kManifestJson, R"({"format": "pemref_pem/1"})");
+    EXPECT_NE(ErrorOf([&] { ReadPemManifest(m.dir); }).find("infer again"), std::string::npos);
+    fs::remove_all(dir);
+}
+
+TEST(InferReport, SampleAndInferJsonRoundTrip) {
+    const fs::path dir = FreshDir("infer_report");
+    MapReport map;
+    map.view = 2, map.group = 1, map.layer = 0, map.term = "R", map.name = "pem_local";
+    map.rows = 10, map.cols = 20, map.nnz = 30, map.rmse8 = 0.125, map.directRmse8 = 0.25;
+    fs::create_directories(ViewDir(dir.string(), 2));
+    WriteSampleJson(dir.string(),
+                    {{2, 1.5, 0.5, 99, 7}, {map}, {{2, 1, "PEM local layer", "convex"}}});
+    const SampleRecord s = ReadSampleJson(dir.string(), 2);
+    EXPECT_EQ(s.sample.vertexRays, 99u);
+    ASSERT_EQ(s.maps.size(), 1u);
+    EXPECT_EQ(s.maps[0].name, "pem_local");
+    EXPECT_EQ(s.maps[0].rmse8, 0.125);
+    EXPECT_EQ(s.maps[0].directRmse8, 0.25);
+    ASSERT_EQ(s.leftOut.size(), 1u);
+    EXPECT_EQ(s.leftOut[0].why, "convex");
+    InferRecord rec;
+    rec.dir = dir.string();
+    rec.res = 64, rec.neighbours = 1, rec.maps = s.maps, rec.samples = {s.sample};
+    WriteInferJson(rec);
+    const InferRecord r = ReadInferJson(dir.string());
+    EXPECT_EQ(r.res, 64);
+    EXPECT_EQ(r.neighbours, 1);
+    EXPECT_EQ(r.maps.size(), 1u);
+    EXPECT_EQ(r.lambda.smooth, rec.lambda.smooth);
+    fs::remove_all(dir);
+}
+
+TEST(Layout, OneSpellingOfEveryPath) {
+    EXPECT_EQ(MapFile(3, 1, "layer_0"), "view_003/group_1/layer_0.exr");
+    EXPECT_EQ(GroupImagePath("t", 12, 0, LayerImageName(1, 1)), "t/view_012/group_0/layer_1_T.exr");
+    EXPECT_EQ(SampleJsonPath("p", 0), "p/view_000/sample.json");
+    EXPECT_EQ(PreviewPath("a/b_R.exr"), "a/b_R.png");
+}
+
+}  // namespace
+}  // namespace pem::pipeline

@@ -1,0 +1,190 @@
+// SPDX-License-Identifier: MIT
+// renderer_test.cpp — the run-time renderer on the bundled mirror sphere with maps made by hand
+// (runtime/map_set.h), against what those maps must give: a constant map times the mirror's
+// Fresnel factor (F0 = 0.9, so within [0.9, 1] of the map), the premultiplied "over" of the
+// layers, the blend of two samples as the weighted sum of each sample's frame, the background
+// shared by every method, and one clear error for a missing map.
+#include "runtime/renderer.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "base/input_error.h"
+
+namespace pem::runtime {
+namespace {
+
+const std::string kScene = std::string(PEM_SOURCE_DIR) + "/data/scenes/mirror_sphere.gltf";
+
+// A cube texture of face size n, every texel (r, g, b, a) in bytes.
+raster::Texture Constant(int n, uint8_t r, uint8_t g, uint8_t b, uint8_t a) {
+    raster::Texture t;
+    t.kind = raster::TextureKind::Cube;
+    t.width = t.height = n;
+    for (int s = n; s >= 1; s /= 2) {
+        std::vector<uint8_t>& level = t.levels.emplace_back();
+        for (int k = 0; k < 6 * s * s; ++k) level.insert(level.end(), {r, g, b, a});
+    }
+    return t;
+}
+
+// Two samples 20° apart about the sphere; one lens group with two sphere layers.
+struct Fixture {
+    trace::Scene scene = trace::LoadScene(kScene);
+    std::map<std::string, raster::Texture> textures;  // "<view>/<name>"
+
+    MapSet Maps() {
+        MapSet m;
+        m.name = "test maps";
+        const raster::Camera c = trace::CameraForSize(*scene.camera, 48, 36);
+        const glm::vec3 centre = trace::LensCentre(scene);
+        for (double deg : {-10.0, 10.0}) {
+            raster::Camera s = c;
+            const glm::vec3 d = c.eye - centre;
+            const float a = static_cast<float>(glm::radians(deg));
+            s.eye = centre + glm::vec3(d.x * std::cos(a) + d.z * std::sin(a), d.y,
+                                       -d.x * std::sin(a) + d.z * std::cos(a));
+            s.target = centre;
+            m.samples.push_back(s);
+        }
+        m.inferred = {0, 1};
+        LensGroupEm g;
+        g.objects = {"mirror_sphere"};
+        g.emOrigin = centre;
+        g.layers = {{"sphere", trace::SphereShell{glm::dvec3(centre), 2.0}, 2.0, 5, {}, 1.0},
+                    {"sphere", trace::SphereShell{glm::dvec3(centre), 6.0}, 6.0, 5, {}, 1.0}};
+        m.groups = {g};
+        m.spp = 1;
+        m.res = 8;
+        m.map = [this](int view, int, const std::string& name) -> const raster::Texture* {
+            auto it = textures.find(std::to_string(view) + "/" + name);
+            return it == textures.end() ? nullptr : &it->second;
+        };
+        return m;
+    }
+    void Set(int view, const std::string& name, const raster::Texture& t) {
+        textures[std::to_string(view) + "/" + name] = t;
+    }
+};
+
+RenderSettings Settings(Method m) {
+    RenderSettings s;
+    s.method = m;
+    s.subpixels = 1;
+    s.threads = 2;
+    return s;
+}
+
+raster::Camera Midway(const MapSet& m) {
+    raster::Camera c = m.samples[0];
+    c.eye = 0.5f * (m.samples[0].eye + m.samples[1].eye);
+    return c;
+}
+
+size_t LensPixels(const RenderedFrame& f) {
+    size_t n = 0;
+    for (uint8_t v : f.lensMask) n += v;
+    return n;
+}
+
+TEST(Renderer, ConstantMapTimesFresnel) {
+    Fixture fx;
+    fx.Set(0, "layer_0", Constant(8, 0, 0, 0, 0));         // inner layer: transparent
+    fx.Set(0, "layer_1", Constant(8, 128, 64, 255, 255));  // outer layer
+    fx.Set(1, "layer_0", Constant(8, 0, 0, 0, 0));
+    fx.Set(1, "layer_1", Constant(8, 128, 64, 255, 255));
+    Renderer r(fx.scene, fx.Maps(), 2);
+    for (Method m : {Method::Hybrid, Method::Pem}) {
+        const RenderedFrame f = r.Render(r.SampleCamera(0), Settings(m));
+        EXPECT_EQ(f.stats.samples, std::vector<int>{0});
+        ASSERT_GT(LensPixels(f), 100u);
+        for (size_t p = 0; p < f.lensMask.size(); ++p) {
+            if (!f.lensMask[p]) continue;
+            const float* px = &f.image.data[3 * p];
+            const float map[3] = {128 / 255.0f, 64 / 255.0f, 1.0f};
+            for (int c = 0; c < 3; ++c)  // F in [0.9, 1], one 8-bit step of rounding
+                ASSERT_TRUE(px[c] >= 0.9f * map[c] - 1.5f / 255 && px[c] <= map[c] + 1.5f / 255)
+                    << ToString(m) << " pixel " << p << " channel " << c << ": " << px[c];
+        }
+    }
+}
+
+TEST(Renderer, OpaqueInnerLayerHidesTheOuterOne) {
+    Fixture fx;
+    for (int v : {0, 1}) {
+        fx.Set(v, "layer_0", Constant(8, 200, 10, 10, 255));
+        fx.Set(v, "layer_1", Constant(8, 10, 10, 200, 255));
+    }
+    Renderer both(fx.scene, fx.Maps(), 2);
+    const RenderedFrame f = both.Render(both.SampleCamera(0), Settings(Method::Hybrid));
+    for (int v : {0, 1}) fx.Set(v, "layer_1", Constant(8, 200, 10, 10, 255));
+    Renderer inner(fx.scene, fx.Maps(), 2);
+    const RenderedFrame g = inner.Render(inner.SampleCamera(0), Settings(Method::Hybrid));
+    ASSERT_GT(LensPixels(f), 100u);
+    EXPECT_EQ(f.image.data, g.image.data);  // the outer colour never shows through alpha 1
+}
+
+TEST(Renderer, TwoSamplesBlendAsTheirWeightedFrames) {
+    Fixture fx;
+    auto frameWith = [&](uint8_t v0, uint8_t v1) {
+        for (auto [v, value] : {std::pair{0, v0}, std::pair{1, v1}}) {
+            fx.Set(v, "layer_0", Constant(8, 0, 0, 0, 0));
+            fx.Set(v, "layer_1", Constant(8, value, value, value, 255));
+        }
+        Renderer r(fx.scene, fx.Maps(), 2);
+        return r.Render(Midway(r.maps()), Settings(Method::Pem));
+    };
+    const RenderedFrame low = frameWith(40, 40), high = frameWith(240, 240);
+    const RenderedFrame mixed = frameWith(40, 240);
+    ASSERT_EQ(mixed.stats.samples.size(), 2u);
+    const double w0 = mixed.stats.sampleWeights[0], w1 = mixed.stats.sampleWeights[1];
+    EXPECT_NEAR(w0 + w1, 1.0, 1e-12);
+    EXPECT_NEAR(w0, 0.5, 1e-3);  // midway
+    const size_t s0 = static_cast<size_t>(mixed.stats.samples[0]);
+    const RenderedFrame& a = s0 == 0 ? low : high;
+    const RenderedFrame& b = s0 == 0 ? high : low;
+    ASSERT_GT(LensPixels(mixed), 100u);
+    for (size_t p = 0; p < mixed.lensMask.size(); ++p)
+        for (size_t c = 0; c < 3; ++c) {
+            const size_t k = 3 * p + c;
+            const double expected =
+                mixed.lensMask[p] ? w0 * double{a.image.data[k]} + w1 * double{b.image.data[k]}
+                                  : static_cast<double>(low.image.data[k]);
+            ASSERT_NEAR(double{mixed.image.data[k]}, expected, 1e-6) << p;
+        }
+}
+
+TEST(Renderer, EveryMethodSharesTheBackground) {
+    Fixture fx;
+    for (int v : {0, 1}) {
+        fx.Set(v, "layer_0", Constant(8, 0, 0, 0, 0));
+        fx.Set(v, "layer_1", Constant(8, 90, 90, 90, 255));
+    }
+    Renderer r(fx.scene, fx.Maps(), 2);
+    const raster::Camera cam = Midway(r.maps());
+    const RenderedFrame h = r.Render(cam, Settings(Method::Hybrid));
+    const RenderedFrame s = r.Render(cam, Settings(Method::StaticEm));
+    ASSERT_EQ(h.lensMask, s.lensMask);
+    for (size_t p = 0; p < h.lensMask.size(); ++p) {
+        if (h.lensMask[p]) continue;
+        for (size_t c = 0; c < 3; ++c) ASSERT_EQ(h.image.data[3 * p + c], s.image.data[3 * p + c]);
+    }
+}
+
+TEST(Renderer, MissingMapNamesTheSet) {
+    Fixture fx;
+    fx.Set(0, "layer_0", Constant(8, 0, 0, 0, 0));  // layer_1 and sample 1 missing
+    Renderer r(fx.scene, fx.Maps(), 1);
+    try {
+        r.Render(r.SampleCamera(0), Settings(Method::Hybrid));
+        FAIL() << "no exception";
+    } catch (const base::InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("test maps: missing maps for viewpoint sample 0"),
+                  std::string::npos)
+            << e.what();
+    }
+}
+
+}  // namespace
+}  // namespace pem::runtime

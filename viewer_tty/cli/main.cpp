@@ -1,0 +1,60 @@
+// SPDX-License-Identifier: MIT
+// main.cpp — the `pemref` command line: one subcommand per cmd_<name>.h of this folder.
+// Every failure prints one line `pemref: <file>: <cause>` and exits non-zero; outputs are
+// written to temporary files and renamed, so a failed run leaves none behind.
+#include <malloc.h>
+
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <exception>
+
+#include "viewer_tty/cli/cmd_bake.h"
+#include "viewer_tty/cli/cmd_demo.h"
+#include "viewer_tty/cli/cmd_infer.h"
+#include "viewer_tty/cli/cmd_raster.h"
+#include "viewer_tty/cli/cmd_render.h"
+#include "viewer_tty/cli/cmd_report.h"
+#include "viewer_tty/cli/cmd_stability.h"
+#include "viewer_tty/cli/cmd_trace.h"
+#include "viewer_tty/cli/cmd_view.h"
+
+int main(int argc, char** argv) {
+    // Frames allocate and free buffers of a few MB each (passes, images, meshes): keep them in
+    // the heap rather than mapping and unmapping them every frame (page faults, TLB shootdowns).
+    mallopt(M_MMAP_THRESHOLD, 32 << 20);
+    mallopt(M_TRIM_THRESHOLD, 256 << 20);
+    CLI::App app{"pemref — parameterized, layered environment maps, CPU reference"};
+    app.require_subcommand(1);
+    pem::cli::AddRasterCommand(app);
+    pem::cli::AddTraceCommand(app);
+    pem::cli::AddInferCommand(app);
+    pem::cli::AddRenderCommand(app);
+    pem::cli::AddViewCommand(app);
+    pem::cli::AddBakeCommand(app);
+    pem::cli::AddReportCommand(app);
+    pem::cli::AddDemoCommand(app);
+    pem::cli::AddStabilityCommand(app);
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::CallForHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::ParseError& e) {
+        std::fprintf(stderr, "pemref: %s (see pemref --help)\n", e.what());
+        return 2;
+    }
+    try {
+        if (app.got_subcommand("raster")) return pem::cli::RunRasterCommand();
+        if (app.got_subcommand("trace")) return pem::cli::RunTraceCommand();
+        if (app.got_subcommand("infer")) return pem::cli::RunInferCommand();
+        if (app.got_subcommand("render")) return pem::cli::RunRenderCommand();
+        if (app.got_subcommand("view")) return pem::cli::RunViewCommand();
+        if (app.got_subcommand("bake")) return pem::cli::RunBakeCommand();
+        if (app.got_subcommand("report")) return pem::cli::RunReportCommand();
+        if (app.got_subcommand("demo")) return pem::cli::RunDemoCommand();
+        if (app.got_subcommand("stability")) return pem::cli::RunStabilityCommand();
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "pemref: %s\n", e.what());
+        return 1;
+    }
+    return 0;
+}

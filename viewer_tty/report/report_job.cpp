@@ -1,0 +1,256 @@
+// SPDX-License-Identifier: MIT
+// report_job.cpp — measurements of `pemref report` (report_job.h).
+#include "viewer_tty/report/report_job.h"
+
+#include <sys/utsname.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <thread>
+
+#include "base/display_image.h"
+#include "base/png_io.h"
+#include "pipeline/infer_report.h"
+#include "pipeline/layout.h"
+#include "pipeline/pem_set.h"
+#include "pipeline/trace_manifest.h"
+#include "viewer_tty/report/report_writer.h"
+#include "viewer_tty/stability/stability.h"
+
+namespace pem::report {
+namespace {
+
+std::string Machine() {
+    std::string model = "unknown CPU";
+    std::ifstream cpu("/proc/cpuinfo");
+    for (std::string line; std::getline(cpu, line);)
+        if (line.rfind("model name", 0) == 0) {
+            model = line.substr(line.find(':') + 2);
+            break;
+        }
+    utsname u{};
+    uname(&u);
+    return model + ", " + std::to_string(std::thread::hardware_concurrency()) +
+           " hardware threads, " + u.sysname + " " + u.release;
+}
+
+MetricImage ToMetric(const trace::FloatImage& img) {
+    MetricImage m{img.width, img.height, {}};
+    m.rgb.reserve(static_cast<size_t>(img.width) * static_cast<size_t>(img.height) * 3);
+    for (size_t p = 0; p < static_cast<size_t>(img.width) * static_cast<size_t>(img.height); ++p)
+        for (size_t c = 0; c < 3; ++c)
+            m.rgb.push_back(img.data[p * static_cast<size_t>(img.channels) + c]);
+    return m;
+}
+
+void WriteFramePng(const std::string& path, const trace::FloatImage& image) {
+    base::WritePng(path, base::ToDisplayImage(image.data, image.width, image.height, 3, 1.0f));
+}
+
+struct Position {
+    std::string name, file;
+    raster::Camera camera;
+};
+
+// Azimuth of an eye about the lens centre (radians, from +Z toward +X).
+double Azimuth(const glm::vec3& eye, const glm::vec3& centre) {
+    return std::atan2(static_cast<double>(eye.x - centre.x), static_cast<double>(eye.z - centre.z));
+}
+
+// On the circle at the first sample, halfway to the next sample, and 10° above that.
+std::vector<Position> Positions(const runtime::Renderer& renderer) {
+    const runtime::MapSet& maps = renderer.maps();
+    const glm::vec3 centre = trace::LensCentre(renderer.scene());
+    const int s0 = maps.inferred.front();
+    double step = 10.0;
+    if (maps.inferred.size() > 1) {
+        const double d = Azimuth(maps.samples[static_cast<size_t>(maps.inferred[1])].eye, centre) -
+                         Azimuth(maps.samples[static_cast<size_t>(s0)].eye, centre);
+        step = glm::degrees(std::remainder(d, 2.0 * M_PI));
+    }
+    return {{"on circle", "on_circle", renderer.SampleCamera(s0)},
+            {"between samples", "between", renderer.Orbit(step / 2.0, 0.0, 1.0)},
+            {"10° above", "above", renderer.Orbit(step / 2.0, 10.0, 1.0)}};
+}
+
+struct MethodRun {
+    std::string method, setting, file;
+    runtime::RenderSettings settings;
+};
+
+std::vector<MethodRun> Methods(int threads) {
+    std::vector<MethodRun> runs;
+    auto add = [&](std::string method, std::string setting, std::string file, runtime::Method m,
+                   double t, int spp, int layers) {
+        runtime::RenderSettings s;
+        s.method = m, s.t = t, s.spp = spp, s.layers = layers, s.threads = threads;
+        runs.push_back({std::move(method), std::move(setting), std::move(file), s});
+    };
+    add("static EM", "", "static", runtime::Method::StaticEm, 5.0, 1, 0);
+    add("single-layer PEM", "", "pem1", runtime::Method::Pem, 5.0, 1, 1);
+    add("layered PEM", "", "pem", runtime::Method::Pem, 5.0, 1, 0);
+    add("hybrid", "t=3", "hybrid_t3", runtime::Method::Hybrid, 3.0, 1, 0);
+    add("hybrid", "t=5", "hybrid_t5", runtime::Method::Hybrid, 5.0, 1, 0);
+    for (int k = 1; k <= 4; ++k)
+        add("ray tracer", std::to_string(k * k) + " spp", "traced_" + std::to_string(k * k),
+            runtime::Method::RayTraced, 5.0, k, 0);
+    return runs;
+}
+
+// Every method at one position against the reference, frames written to viewsDir.
+void MeasurePosition(runtime::Renderer& renderer, const Position& pos,
+                     const std::vector<MethodRun>& runs, const ReportJobOptions& o,
+                     const std::string& viewsDir, ReportData* data) {
+    if (o.log) o.log(pos.name + ": reference");
+    runtime::RenderSettings ref;
+    ref.method = runtime::Method::RayTraced;
+    ref.spp = o.referenceSpp;
+    ref.threads = o.threads;
+    const runtime::RenderedFrame reference = renderer.Render(pos.camera, ref);
+    const MetricImage refImage = ToMetric(reference.image);
+    const std::vector<uint8_t>& mask = reference.lensMask;
+    WriteFramePng(viewsDir + "/" + pos.file + "_reference.png", reference.image);
+    for (const MethodRun& run : runs) {
+        if (o.log) o.log(pos.name + ": " + run.method + " " + run.setting);
+        // Warm: maps loaded and prepared by a first frame (not for the ray tracer).
+        if (run.settings.method != runtime::Method::RayTraced)
+            renderer.Render(pos.camera, run.settings);
+        const runtime::RenderedFrame f = renderer.Render(pos.camera, run.settings);
+        const MetricImage img = ToMetric(f.image);
+        MethodResult r;
+        r.method = run.method, r.setting = run.setting, r.position = pos.name;
+        r.seconds = f.stats.totalSeconds;
+        r.rays = f.stats.tracerRays + f.stats.vertexRays + f.stats.backgroundRays;
+        r.floatScores = CompareFloat(img, refImage, &mask);
+        r.scores8 = Compare8Bit(img, refImage, &mask);
+        data->results.push_back(r);
+        WriteFramePng(viewsDir + "/" + pos.file + "_" + run.file + ".png", f.image);
+    }
+}
+
+// Mean build + solve seconds of a group's maps at one sample.
+double MeanMapSeconds(const pipeline::InferRecord& ir, int group, int view) {
+    double sum = 0.0;
+    int count = 0;
+    for (const pipeline::MapReport& m : ir.maps)
+        if (m.group == group && m.view == view) sum += m.buildSeconds + m.solveSeconds, ++count;
+    return count ? sum / count : 0.0;
+}
+
+// What the trace and the inference left out, per group, with the time it saved (estimates).
+void PipelineLeftOut(const pipeline::TraceManifest& tm, const pipeline::InferRecord& ir,
+                     ReportData* data) {
+    for (const runtime::LensGroupEm& grp : tm.groups) {
+        const int g = grp.index;
+        const std::string name = nlohmann::json(grp.objects).dump();
+        double rSeconds = 0.0, solveSeconds = 0.0;
+        int64_t filled = 0, observed = 0;
+        for (const pipeline::MapReport& m : ir.maps) {
+            if (m.group != g) continue;
+            if (m.term == "R") rSeconds += m.buildSeconds + m.solveSeconds;
+            solveSeconds += m.solveSeconds;
+            filled += m.filledTexels;
+            observed += m.observedTexels;
+        }
+        for (const pipeline::LeftOut& l : ir.leftOut)  // empty clusters, convex reflectors
+            if (l.group == g)
+                data->leftOut.push_back({name, l.what + " (sample " + std::to_string(l.view) + ")",
+                                         l.why, MeanMapSeconds(ir, g, l.view)});
+        if (!grp.glass)
+            data->leftOut.push_back({name,
+                                     "refraction (T) term: no trace images, no maps, no passes",
+                                     "no object of the group transmits light",
+                                     rSeconds});  // estimate: as much as the R term cost
+        for (size_t l = 0; l < grp.layers.size(); ++l)
+            if (grp.layers[l].Empty())
+                data->leftOut.push_back(
+                    {name, "layer " + std::to_string(l), "its cluster is empty", 0.0});
+        if (observed > 0)
+            data->leftOut.push_back(
+                {name,
+                 std::to_string(filled) + " texels (incl. whole MIP levels) out of the solves",
+                 "no pixel of the sample samples them: filled afterwards",
+                 solveSeconds * static_cast<double>(filled) / static_cast<double>(observed)});
+    }
+}
+
+// What the run-time renderer leaves out, from a hybrid t = 5 frame on the circle.
+void RunTimeLeftOut(runtime::Renderer& renderer, const raster::Camera& camera, int threads,
+                    ReportData* data) {
+    runtime::RenderSettings hs;
+    hs.method = runtime::Method::Hybrid;
+    hs.threads = threads;
+    const runtime::FrameStats st = renderer.Render(camera, hs).stats;
+    const double perVertex =
+        st.tracedVertices > 0 ? st.traceSeconds / static_cast<double>(st.tracedVertices) : 0.0;
+    data->leftOut.push_back({"all lens groups",
+                             std::to_string(st.backFacingTriangles) + " back-facing triangles, " +
+                                 std::to_string(st.untracedVertices) +
+                                 " vertices (hybrid t=5, on circle)",
+                             "facing away from the eye: no vertex rays, no refinement, not drawn",
+                             perVertex * static_cast<double>(st.untracedVertices)});
+    if (st.groupsSkipped > 0)
+        data->leftOut.push_back({"all lens groups",
+                                 std::to_string(st.groupsSkipped) + " lens group(s) (on circle)",
+                                 "no pixel sees them: no rays, no passes", 0.0});
+}
+
+void AddNotes(int referenceSpp, ReportData* data) {
+    data->notes.push_back(
+        "Scores over the pixels where the reference sees a lens object; run time "
+        "is the whole frame (the rest of the scene: one ray-traced sample per "
+        "pixel for the EM methods), warm.");
+    data->notes.push_back("Reference: the ray tracer (full tree) at " +
+                          std::to_string(referenceSpp) + "×" + std::to_string(referenceSpp) +
+                          " samples per pixel.");
+    data->notes.push_back(
+        "Left-out seconds are estimates: the R term's cost for a T term; the mean cost of one "
+        "of the group's maps for a map left out; solve time scaled by the left-out/solved texel "
+        "ratio for unsampled texels; seconds per traced vertex times the untraced vertices for "
+        "back-facing parts.");
+}
+
+void AddStability(const ReportJobOptions& o, ReportData* data) {
+    stability::StabilityOptions so;
+    so.dataDir = o.dataDir;
+    if (!so.dataDir.empty() && !std::filesystem::exists(so.dataDir)) so.dataDir.clear();
+    so.threads = o.threads;
+    for (const stability::StabilityCase& c : stability::RunStabilitySuite(so))
+        data->stability.push_back({c.name, c.category, c.expected, c.outcome, c.passed, c.residual,
+                                   c.condition, c.detail});
+}
+
+}  // namespace
+
+void RunReportJob(const ReportJobOptions& o) {
+    const std::string pemDir = pipeline::BakePemDir(o.dir);
+    std::unique_ptr<runtime::Renderer> renderer = pipeline::OpenPemDirectory(pemDir, o.threads);
+    ReportData data;
+    data.title = "pemref report";
+    data.scene = pipeline::ReadPemManifest(pemDir).sceneGiven;
+    data.machine = Machine();
+    data.threads = o.threads;
+    data.buildFlags = o.buildFlags;
+    data.compiler = o.compiler;
+    // Step 1: every method at the three positions.
+    const std::vector<Position> positions = Positions(*renderer);
+    const std::string viewsDir = o.dir + "/views";
+    std::filesystem::create_directories(viewsDir);
+    for (const Position& pos : positions)
+        MeasurePosition(*renderer, pos, Methods(o.threads), o, viewsDir, &data);
+    // Step 2: what the pipeline and the run time left out.
+    const std::string traceDir = pipeline::BakeTraceDir(o.dir);
+    if (std::filesystem::exists(traceDir + "/" + pipeline::kTraceJson) &&
+        std::filesystem::exists(pemDir + "/" + pipeline::kInferJson))
+        PipelineLeftOut(pipeline::ReadTraceManifest(traceDir), pipeline::ReadInferJson(pemDir),
+                        &data);
+    RunTimeLeftOut(*renderer, positions[0].camera, o.threads, &data);
+    AddNotes(o.referenceSpp, &data);
+    // Step 3: the stability suite; the documents.
+    if (o.stability) AddStability(o, &data);
+    WriteReport(data, o.dir);
+}
+
+}  // namespace pem::report

@@ -1,0 +1,431 @@
+// SPDX-License-Identifier: MIT
+// report_writer.cpp — the three report documents (markdown tables, an SVG log-log plot, JSON) and
+// their atomic publication.
+// Conventions: numbers are formatted with snprintf ("%.4g"; PSNR "%.2f dB"; SSIM "%.4f"), so the
+// text does not depend on the locale of iostreams. SVG coordinates are in px with 2 decimals.
+// Not here: any measurement; the SVG has no scripts, no external fonts, no CSS files.
+#include "viewer_tty/report/report_writer.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <iterator>
+#include <nlohmann/json.hpp>
+#include <utility>
+
+#include "base/atomic_file.h"
+
+namespace pem::report {
+
+namespace {
+
+// ---- Text helpers ------------------------------------------------------------------------------
+
+std::string Format(const char* format, double v) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, format, v);
+    return buf;
+}
+
+// A number for a table cell; non-finite values are "n/a".
+std::string Num(double v, const char* format = "%.4g") {
+    return std::isfinite(v) ? Format(format, v) : "n/a";
+}
+
+// A table cell: '|' escaped, line breaks flattened.
+std::string Cell(const std::string& text) {
+    std::string out;
+    for (char c : text) {
+        if (c == '|')
+            out += "\\|";
+        else if (c == '\n' || c == '\r')
+            out += ' ';
+        else
+            out += c;
+    }
+    return out;
+}
+
+std::string Row(const std::vector<std::string>& cells) {
+    std::string row = "|";
+    for (const std::string& c : cells) row += " " + c + " |";
+    return row + "\n";
+}
+
+// The header and rule of a table; align has one letter per column, 'l' (text) or 'r' (numbers).
+std::string HeaderRow(const std::vector<std::string>& names, const std::string& align) {
+    std::string rule = "|";
+    for (size_t i = 0; i < names.size(); ++i) rule += align.at(i) == 'r' ? "---:|" : "---|";
+    return Row(names) + rule + "\n";
+}
+
+std::string Xml(const std::string& text) {
+    std::string out;
+    for (char c : text) {
+        switch (c) {
+            case '&':
+                out += "&amp;";
+                break;
+            case '<':
+                out += "&lt;";
+                break;
+            case '>':
+                out += "&gt;";
+                break;
+            case '"':
+                out += "&quot;";
+                break;
+            default:
+                out += c;
+        }
+    }
+    return out;
+}
+
+// Natural order: digit runs compare as numbers ("t=3" < "t=10"), the rest byte-wise.
+bool NaturalLess(const std::string& a, const std::string& b) {
+    size_t i = 0, j = 0;
+    while (i < a.size() && j < b.size()) {
+        if (std::isdigit(static_cast<unsigned char>(a[i])) &&
+            std::isdigit(static_cast<unsigned char>(b[j]))) {
+            size_t ie = i, je = j;
+            while (ie < a.size() && std::isdigit(static_cast<unsigned char>(a[ie]))) ++ie;
+            while (je < b.size() && std::isdigit(static_cast<unsigned char>(b[je]))) ++je;
+            std::string na = a.substr(i, ie - i), nb = b.substr(j, je - j);
+            na.erase(0, std::min(na.find_first_not_of('0'), na.size()));
+            nb.erase(0, std::min(nb.find_first_not_of('0'), nb.size()));
+            if (na.size() != nb.size()) return na.size() < nb.size();
+            if (na != nb) return na < nb;
+            i = ie, j = je;
+        } else {
+            if (a[i] != b[j]) return a[i] < b[j];
+            ++i, ++j;
+        }
+    }
+    return a.size() - i < b.size() - j;
+}
+
+// Distinct values in order of first appearance.
+template <typename Get>
+std::vector<std::string> FirstAppearance(const std::vector<MethodResult>& results, Get get) {
+    std::vector<std::string> out;
+    for (const MethodResult& r : results)
+        if (std::find(out.begin(), out.end(), get(r)) == out.end()) out.push_back(get(r));
+    return out;
+}
+
+std::vector<std::string> Methods(const std::vector<MethodResult>& results) {
+    return FirstAppearance(results, [](const MethodResult& r) { return r.method; });
+}
+
+std::vector<std::string> Positions(const std::vector<MethodResult>& results) {
+    return FirstAppearance(results, [](const MethodResult& r) { return r.position; });
+}
+
+size_t IndexOf(const std::vector<std::string>& list, const std::string& value) {
+    return size_t(std::find(list.begin(), list.end(), value) - list.begin());
+}
+
+// ---- Markdown ----------------------------------------------------------------------------------
+
+std::string MarkdownResults(const std::vector<MethodResult>& sorted) {
+    std::string md;
+    for (const std::string& position : Positions(sorted)) {
+        md += "\n## Position: " + (position.empty() ? "(unnamed)" : position) + "\n\n";
+        md += HeaderRow({"method", "setting", "seconds", "rays", "RMSE", "PSNR", "SSIM",
+                         "RMSE 8-bit", "PSNR 8-bit", "SSIM 8-bit"},
+                        "llrrrrrrrr");
+        for (const MethodResult& r : sorted) {
+            if (r.position != position) continue;
+            const ImageScores &f = r.floatScores, &q = r.scores8;
+            md += Row({Cell(r.method), Cell(r.setting), Num(r.seconds), std::to_string(r.rays),
+                       Num(f.rmse), Num(f.psnr, "%.2f dB"), Num(f.ssim, "%.4f"), Num(q.rmse),
+                       Num(q.psnr, "%.2f dB"), Num(q.ssim, "%.4f")});
+        }
+    }
+    return md;
+}
+
+std::string MarkdownLeftOut(const std::vector<LeftOutRow>& rows) {
+    std::string md = "\n## Left out\n\n";
+    if (rows.empty()) return md + "Nothing was left out.\n";
+    md += HeaderRow({"group", "decision", "reason", "seconds saved"}, "lllr");
+    double total = 0;
+    for (const LeftOutRow& r : rows) {
+        md += Row({Cell(r.group), Cell(r.decision), Cell(r.reason), Num(r.secondsSaved)});
+        if (std::isfinite(r.secondsSaved)) total += r.secondsSaved;
+    }
+    return md + Row({"**total**", "", "", "**" + Num(total) + "**"});
+}
+
+std::string MarkdownStability(const std::vector<StabilityRow>& rows) {
+    std::string md = "\n## Stability\n\n";
+    if (rows.empty()) return md + "No stability cases were run.\n";
+    md += HeaderRow(
+        {"case", "category", "expected", "outcome", "result", "residual", "condition", "detail"},
+        "lllllrrl");
+    size_t passed = 0;
+    for (const StabilityRow& r : rows) {
+        md += Row({Cell(r.name), Cell(r.category), Cell(r.expected), Cell(r.outcome),
+                   r.passed ? "PASS" : "**FAIL**", Num(r.residual), Num(r.condition),
+                   Cell(r.detail)});
+        passed += r.passed ? 1 : 0;
+    }
+    return md + "\n" + std::to_string(passed) + " of " + std::to_string(rows.size()) +
+           " cases passed.\n";
+}
+
+// ---- SVG plot: RMSE (float) against seconds, log-log, one panel per position -------------------
+
+constexpr double kPanelW = 300, kPanelH = 240;                    // plot area of one panel
+constexpr double kLeft = 80, kTop = 60, kGap = 70, kBottom = 60;  // margins around panels
+constexpr double kLegendW = 190;
+const char* const kColours[] = {"#0072B2", "#D55E00", "#009E73", "#CC79A7",
+                                "#E69F00", "#56B4E9", "#000000", "#999999"};
+
+bool Plottable(const MethodResult& r) {
+    return std::isfinite(r.seconds) && r.seconds > 0 && std::isfinite(r.floatScores.rmse) &&
+           r.floatScores.rmse > 0;
+}
+
+// A log10 axis over whole decades [lo, hi] (exponents), covering every plotted value.
+struct Decades {
+    int lo = -3, hi = 0;
+    double Fraction(double v) const { return (std::log10(v) - lo) / double(hi - lo); }
+    int LabelStep() const { return (hi - lo + 5) / 6; }  // at most about 6 labelled decades
+};
+
+Decades DecadesOf(const std::vector<double>& values, Decades fallback) {
+    if (values.empty()) return fallback;
+    const auto [mn, mx] = std::minmax_element(values.begin(), values.end());
+    Decades d{int(std::floor(std::log10(*mn))), int(std::ceil(std::log10(*mx)))};
+    if (d.hi <= d.lo) d.hi = d.lo + 1;
+    return d;
+}
+
+std::string P(double v) {
+    return Format("%.2f", v);
+}
+
+std::string SvgText(double x, double y, const std::string& text, const std::string& attrs) {
+    return "<text x=\"" + P(x) + "\" y=\"" + P(y) + "\" " + attrs + ">" + Xml(text) + "</text>\n";
+}
+
+std::string SvgLine(double x1, double y1, double x2, double y2, const std::string& attrs) {
+    return "<line x1=\"" + P(x1) + "\" y1=\"" + P(y1) + "\" x2=\"" + P(x2) + "\" y2=\"" + P(y2) +
+           "\" " + attrs + "/>\n";
+}
+
+// Frame, decade grid, ticks (minor at 2..9), labels and axis titles of one panel at (x0, y0).
+std::string SvgAxes(double x0, double y0, const Decades& xs, const Decades& ys, bool yTitle) {
+    std::string s = "<rect x=\"" + P(x0) + "\" y=\"" + P(y0) + "\" width=\"" + P(kPanelW) +
+                    "\" height=\"" + P(kPanelH) + "\" fill=\"none\" stroke=\"#333\"/>\n";
+    for (int e = xs.lo; e <= xs.hi; ++e) {
+        for (int m = 1; m < 10 && (m == 1 || e < xs.hi); ++m) {
+            const double x = x0 + kPanelW * xs.Fraction(m * std::pow(10.0, e));
+            if (m == 1) s += SvgLine(x, y0, x, y0 + kPanelH, "stroke=\"#ddd\"");
+            s += SvgLine(x, y0 + kPanelH, x, y0 + kPanelH + (m == 1 ? 6 : 3), "stroke=\"#333\"");
+        }
+        if ((e - xs.lo) % xs.LabelStep() != 0) continue;
+        s += SvgText(x0 + kPanelW * xs.Fraction(std::pow(10.0, e)), y0 + kPanelH + 20,
+                     Format("%g", std::pow(10.0, e)), "text-anchor=\"middle\"");
+    }
+    for (int e = ys.lo; e <= ys.hi; ++e) {
+        for (int m = 1; m < 10 && (m == 1 || e < ys.hi); ++m) {
+            const double y = y0 + kPanelH * (1 - ys.Fraction(m * std::pow(10.0, e)));
+            if (m == 1) s += SvgLine(x0, y, x0 + kPanelW, y, "stroke=\"#ddd\"");
+            s += SvgLine(x0 - (m == 1 ? 6 : 3), y, x0, y, "stroke=\"#333\"");
+        }
+        if ((e - ys.lo) % ys.LabelStep() != 0) continue;
+        s += SvgText(x0 - 9, y0 + kPanelH * (1 - ys.Fraction(std::pow(10.0, e))) + 4,
+                     Format("%g", std::pow(10.0, e)), "text-anchor=\"end\"");
+    }
+    s += SvgText(x0 + kPanelW / 2, y0 + kPanelH + 42, "run time (s, log scale)",
+                 "text-anchor=\"middle\"");
+    if (yTitle) {
+        const double cx = x0 - 62, cy = y0 + kPanelH / 2;
+        s +=
+            SvgText(cx, cy, "RMSE vs. reference (float, log scale)",
+                    "text-anchor=\"middle\" transform=\"rotate(-90 " + P(cx) + " " + P(cy) + ")\"");
+    }
+    return s;
+}
+
+// The markers of one position: a thin line per method through its settings, one circle per
+// plottable result, the setting as a label; a note counts the results that could not be plotted.
+std::string SvgPanelData(const std::vector<MethodResult>& sorted, const std::string& position,
+                         double x0, double y0, const Decades& xs, const Decades& ys) {
+    const std::vector<std::string> methods = Methods(sorted);
+    std::string lines, markers;
+    size_t skipped = 0;
+    for (const std::string& method : methods) {
+        const char* colour = kColours[IndexOf(methods, method) % std::size(kColours)];
+        std::string points;
+        for (const MethodResult& r : sorted) {
+            if (r.position != position || r.method != method) continue;
+            if (!Plottable(r)) {
+                ++skipped;
+                continue;
+            }
+            const double x = x0 + kPanelW * xs.Fraction(r.seconds);
+            const double y = y0 + kPanelH * (1 - ys.Fraction(r.floatScores.rmse));
+            points += P(x) + "," + P(y) + " ";
+            markers += "<circle class=\"marker\" cx=\"" + P(x) + "\" cy=\"" + P(y) +
+                       "\" r=\"4.5\" fill=\"" + colour + "\" stroke=\"#fff\"><title>" +
+                       Xml(method + " " + r.setting + ": " + Num(r.seconds) + " s, RMSE " +
+                           Num(r.floatScores.rmse)) +
+                       "</title></circle>\n";
+            if (!r.setting.empty())
+                markers += SvgText(x + 6, y - 6, r.setting, "font-size=\"10\" fill=\"#333\"");
+        }
+        if (!points.empty())
+            lines += "<polyline points=\"" + points + "\" fill=\"none\" stroke=\"" + colour +
+                     "\" stroke-opacity=\"0.5\"/>\n";
+    }
+    std::string s = lines + markers;
+    if (skipped > 0)
+        s += SvgText(x0 + 4, y0 + kPanelH - 6,
+                     std::to_string(skipped) + " result(s) not plotted (zero or not finite)",
+                     "font-size=\"10\" fill=\"#a00\"");
+    return s;
+}
+
+std::string SvgLegend(const std::vector<std::string>& methods, double x0, double y0) {
+    std::string s = SvgText(x0, y0, "method", "font-weight=\"bold\"");
+    for (size_t i = 0; i < methods.size(); ++i) {
+        const double y = y0 + 20 + 18 * double(i);
+        s += "<circle class=\"legend\" cx=\"" + P(x0 + 5) + "\" cy=\"" + P(y - 4) +
+             "\" r=\"4.5\" fill=\"" + kColours[i % std::size(kColours)] + "\"/>\n";
+        s += SvgText(x0 + 16, y, methods[i].empty() ? "(unnamed)" : methods[i], "");
+    }
+    return s;
+}
+
+// ---- Files -------------------------------------------------------------------------------------
+
+std::string JoinPath(const std::string& dir, const std::string& name) {
+    if (dir.empty()) return name;
+    return dir.back() == '/' ? dir + name : dir + "/" + name;
+}
+
+}  // namespace
+
+std::vector<MethodResult> SortedResults(const std::vector<MethodResult>& results) {
+    const std::vector<std::string> methods = Methods(results);
+    std::vector<MethodResult> sorted = results;
+    std::stable_sort(
+        sorted.begin(), sorted.end(), [&](const MethodResult& a, const MethodResult& b) {
+            const size_t ia = IndexOf(methods, a.method), ib = IndexOf(methods, b.method);
+            if (ia != ib) return ia < ib;
+            return NaturalLess(a.setting, b.setting);
+        });
+    return sorted;
+}
+
+std::string ReportMarkdown(const ReportData& data) {
+    // Step 1: the header (what ran where).
+    std::string md = "# " + (data.title.empty() ? "pemref report" : data.title) + "\n\n";
+    md += HeaderRow({"run", ""}, "ll") + Row({"scene", Cell(data.scene)}) +
+          Row({"machine", Cell(data.machine)}) + Row({"threads", std::to_string(data.threads)}) +
+          Row({"compiler", Cell(data.compiler)}) + Row({"build flags", Cell(data.buildFlags)});
+    // Step 2: the tables, then the notes.
+    md += MarkdownResults(SortedResults(data.results));
+    md += MarkdownLeftOut(data.leftOut) + MarkdownStability(data.stability);
+    if (!data.notes.empty()) {
+        md += "\n## Notes\n\n";
+        for (const std::string& note : data.notes) md += "- " + Cell(note) + "\n";
+    }
+    return md;
+}
+
+std::string ReportSvg(const ReportData& data) {
+    // Step 1: shared log ranges over every plottable result, so the panels compare directly.
+    const std::vector<MethodResult> sorted = SortedResults(data.results);
+    std::vector<double> seconds, rmse;
+    for (const MethodResult& r : sorted) {
+        if (!Plottable(r)) continue;
+        seconds.push_back(r.seconds);
+        rmse.push_back(r.floatScores.rmse);
+    }
+    const Decades xs = DecadesOf(seconds, {-2, 1}), ys = DecadesOf(rmse, {-3, 0});
+    // Step 2: the canvas, one panel per position (at least one), the legend on the right.
+    std::vector<std::string> positions = Positions(sorted);
+    if (positions.empty()) positions.push_back("");
+    const double width = kLeft + double(positions.size()) * (kPanelW + kGap) + kLegendW;
+    const double height = kTop + kPanelH + kBottom;
+    std::string svg = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
+    svg += "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + P(width) + "\" height=\"" +
+           P(height) + "\" viewBox=\"0 0 " + P(width) + " " + P(height) +
+           "\" font-family=\"sans-serif\" font-size=\"12\">\n";
+    svg += "<rect width=\"100%\" height=\"100%\" fill=\"#fff\"/>\n";
+    svg += SvgText(kLeft, 22,
+                   (data.title.empty() ? "pemref report" : data.title) +
+                       (data.scene.empty() ? "" : " — scene " + data.scene) +
+                       ": error against run time",
+                   "font-size=\"15\" font-weight=\"bold\"");
+    for (size_t i = 0; i < positions.size(); ++i) {
+        const double x0 = kLeft + double(i) * (kPanelW + kGap);
+        svg += SvgText(x0 + kPanelW / 2, kTop - 10,
+                       positions[i].empty() ? "(no position)" : positions[i],
+                       "text-anchor=\"middle\" font-weight=\"bold\"");
+        svg += SvgAxes(x0, kTop, xs, ys, i == 0);
+        svg += SvgPanelData(sorted, positions[i], x0, kTop, xs, ys);
+    }
+    const double legendX = kLeft + double(positions.size()) * (kPanelW + kGap) - kGap / 2;
+    return svg + SvgLegend(Methods(sorted), legendX, kTop + 10) + "</svg>\n";
+}
+
+std::string ReportJson(const ReportData& data) {
+    using nlohmann::ordered_json;
+    const auto scores = [](const ImageScores& s) {
+        return ordered_json{
+            {"rmse", s.rmse}, {"psnr", s.psnr}, {"ssim", s.ssim}, {"pixels", s.pixels}};
+    };
+    // Step 1: the run's context; Step 2: every table, in report order (NaN becomes null).
+    ordered_json j = {{"format", "pemref_report/1"}, {"title", data.title},
+                      {"scene", data.scene},         {"machine", data.machine},
+                      {"threads", data.threads},     {"buildFlags", data.buildFlags},
+                      {"compiler", data.compiler}};
+    j["results"] = ordered_json::array();
+    for (const MethodResult& r : SortedResults(data.results))
+        j["results"].push_back({{"method", r.method},
+                                {"setting", r.setting},
+                                {"position", r.position},
+                                {"seconds", r.seconds},
+                                {"rays", r.rays},
+                                {"float", scores(r.floatScores)},
+                                {"8bit", scores(r.scores8)}});
+    double saved = 0;
+    j["leftOut"] = ordered_json::array();
+    for (const LeftOutRow& r : data.leftOut) {
+        j["leftOut"].push_back({{"group", r.group},
+                                {"decision", r.decision},
+                                {"reason", r.reason},
+                                {"secondsSaved", r.secondsSaved}});
+        if (std::isfinite(r.secondsSaved)) saved += r.secondsSaved;
+    }
+    j["leftOutSecondsSaved"] = saved;
+    j["stability"] = ordered_json::array();
+    for (const StabilityRow& r : data.stability)
+        j["stability"].push_back({{"name", r.name},
+                                  {"category", r.category},
+                                  {"expected", r.expected},
+                                  {"outcome", r.outcome},
+                                  {"passed", r.passed},
+                                  {"residual", r.residual},
+                                  {"condition", r.condition},
+                                  {"detail", r.detail}});
+    j["notes"] = data.notes;
+    return j.dump(2, ' ', false, ordered_json::error_handler_t::replace) + "\n";
+}
+
+void WriteReport(const ReportData& data, const std::string& dir) {
+    base::WriteTextsAtomic({{JoinPath(dir, "report.md"), ReportMarkdown(data)},
+                            {JoinPath(dir, "report.svg"), ReportSvg(data)},
+                            {JoinPath(dir, "report.json"), ReportJson(data)}});
+}
+
+}  // namespace pem::report

@@ -1,0 +1,77 @@
+// SPDX-License-Identifier: MIT
+// report_writer.h — turns the numbers of `pemref report` (timings, ray counts, image scores,
+// left-out decisions, stability cases) into report.md, report.svg and report.json in one folder.
+// Conventions: methods keep the order of their first appearance in `results`; within a method,
+// settings sort in natural order ("t=3" < "t=10", "1 spp" < "9 spp"). NaN / infinite numbers are
+// written as "n/a" (markdown), skipped (SVG) or null (JSON). The plot is RMSE (float) against run
+// time in seconds, both axes log10, one panel per position. All three files appear atomically:
+// each is written to `<file>.tmp.<pid>`, and only when all three are complete are they renamed.
+// Not here: computing the numbers (image_metrics.h and the report command), HTML, PNG plots.
+//
+// Usage:
+//   ReportData data;
+//   data.scene = "a";  data.results.push_back({"layered PEM", "t=3", "on circle", 0.8, 0, f, q});
+//   WriteReport(data, "out/report");   // out/report/report.{md,svg,json}; throws
+//   pem::base::InputError
+#pragma once
+
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "base/input_error.h"
+#include "viewer_tty/report/image_metrics.h"
+
+namespace pem::report {
+
+// One timed run of one method at one camera position.
+struct MethodResult {
+    std::string method;    // e.g. "static EM", "single-layer PEM", "layered PEM", "ray tracer"
+    std::string setting;   // e.g. "t=3", "9 spp", or ""
+    std::string position;  // e.g. "on circle", "between samples", "10° above"
+    double seconds = 0;    // wall-clock run time
+    uint64_t rays = 0;     // rays traced (0 for pure rasterization)
+    ImageScores floatScores, scores8;  // against the reference: float values, 8-bit framebuffer
+};
+
+// A piece of work the pipeline decided to skip, and what that saved.
+struct LeftOutRow {
+    std::string group, decision, reason;
+    double secondsSaved = 0;
+};
+
+// One numerical-stability case (e.g. an ill-conditioned solve) and its outcome.
+struct StabilityRow {
+    std::string name, category, expected, outcome;
+    bool passed = false;
+    double residual = std::numeric_limits<double>::quiet_NaN();   // NaN = not measured
+    double condition = std::numeric_limits<double>::quiet_NaN();  // NaN = not measured
+    std::string detail;
+};
+
+struct ReportData {
+    std::string title, scene;
+    std::string machine;
+    int threads = 1;
+    std::string buildFlags, compiler;
+    std::vector<MethodResult> results;
+    std::vector<LeftOutRow> leftOut;
+    std::vector<StabilityRow> stability;
+    std::vector<std::string> notes;
+};
+
+// Writes dir/report.md, dir/report.svg and dir/report.json (dir must exist). Throws
+// pem::base::InputError("<file>: <cause>") if a file cannot be written; if that happens before the
+// renames (the usual case: missing folder, full disk), none of the three is created or replaced.
+void WriteReport(const ReportData& data, const std::string& dir);
+
+// The three documents as text (what WriteReport writes).
+std::string ReportMarkdown(const ReportData& data);
+std::string ReportSvg(const ReportData& data);
+std::string ReportJson(const ReportData& data);
+
+// Results in report order: by method (first appearance), then setting (natural order), stable.
+std::vector<MethodResult> SortedResults(const std::vector<MethodResult>& results);
+
+}  // namespace pem::report
