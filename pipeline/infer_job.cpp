@@ -19,7 +19,6 @@
 #include "infer/pem_file.h"
 #include "pipeline/layout.h"
 #include "pipeline/pem_manifest.h"
-#include "pipeline/viewpoints.h"
 #include "raster/render.h"
 #include "runtime/convex_hull.h"
 #include "runtime/lens_paths.h"
@@ -486,10 +485,10 @@ InferJobResult RunInferJob(const InferJobOptions& opt) {
                                "lens groups differ from the scene's");
     const trace::EmbreeDevice device({opt.threads, "auto"});
     const trace::EmbreeScene embree(device, scene);
-    const trace::Tracer tracer(scene, embree);
+    const trace::Tracer tracer(scene, embree, tm.Tracing());
     // Step 2: every sample, one after the other.
     const std::vector<int> views = SamplesToInfer(opt, tm);
-    Context c{opt, tm, scene, embree, tracer, LegacyCameras(scene, tm.Cameras()), &result, 0, 0};
+    Context c{opt, tm, scene, embree, tracer, tm.Cameras(), &result, 0, 0};
     for (const runtime::LensGroupEm& g : tm.groups)
         c.mapsTotal += static_cast<int>(g.layers.size()) + (opt.single ? 1 : 0) + (g.pem ? 2 : 0);
     c.mapsTotal *= static_cast<int>(views.size());

@@ -27,6 +27,9 @@ json ManifestJson(const PemManifest& m) {
             {"spp", m.spp},
             {"res", m.res},
             {"profile", m.profile},
+            {"full_tree_depth", m.fullTreeDepth},
+            {"min_weight", m.minWeight},
+            {"fresnel", m.fresnel},
             {"hdr", m.hdr},
             {"views", views},
             {"inferred_views", m.inferred},
@@ -54,6 +57,9 @@ PemManifest ManifestFromJson(const json& j) {
     m.spp = j.at("spp").get<int>();
     m.res = j.at("res").get<int>();
     m.profile = j.at("profile").get<std::string>();
+    m.fullTreeDepth = j.at("full_tree_depth").get<int>();
+    m.minWeight = j.at("min_weight").get<double>();
+    m.fresnel = j.at("fresnel").get<std::string>();
     m.hdr = j.at("hdr").get<bool>();
     for (const json& v : j.at("views")) m.views.push_back(CameraFromJson(v));
     m.inferred = j.at("inferred_views").get<std::vector<int>>();
@@ -82,6 +88,9 @@ PemManifest PemManifestFor(const TraceManifest& trace, const std::string& pemDir
     m.spp = trace.spp;
     m.res = res;
     m.hdr = hdr;
+    m.fullTreeDepth = trace.fullTreeDepth;
+    m.minWeight = trace.minWeight;
+    m.fresnel = trace.fresnel;
     m.views = trace.Cameras();
     m.inferred = inferred;
     if (m.inferred.empty())

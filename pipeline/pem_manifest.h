@@ -25,6 +25,9 @@ struct PemManifest {
     std::string traceDir, traceDirGiven;
     int width = 0, height = 0, spp = 1, res = 0;
     std::string profile = "llvmpipe";
+    int fullTreeDepth = 6;  // the tracer's options of the trace (trace_manifest.h)
+    double minWeight = 1e-3;
+    std::string fresnel = "exact";
     bool hdr = false;
     std::vector<raster::Camera> views;  // every viewpoint sample of the trace
     std::vector<int> inferred;          // the samples with maps

@@ -9,7 +9,6 @@
 #include "infer/cube_map.h"
 #include "infer/pem_file.h"
 #include "pipeline/layout.h"
-#include "pipeline/viewpoints.h"
 
 namespace pem::pipeline {
 namespace {
@@ -47,6 +46,10 @@ runtime::MapSet LoadMapSet(const PemManifest& m) {
     set.groups = m.groups;
     set.spp = m.spp;
     set.res = m.res;
+    TraceManifest tracing;  // the tracer's options, as the trace read them
+    tracing.fullTreeDepth = m.fullTreeDepth, tracing.minWeight = m.minWeight;
+    tracing.fresnel = m.fresnel;
+    set.tracing = tracing.Tracing();
     auto cache = std::make_shared<MapCache>(m.dir);
     set.map = [cache](int view, int group, const std::string& name) {
         return cache->Get(view, group, name);
@@ -67,7 +70,6 @@ std::unique_ptr<runtime::Renderer> OpenPemDirectory(const std::string& pemDir, i
     const PemManifest m = ReadPemManifest(pemDir);
     trace::Scene scene = LoadPemScene(m);
     runtime::MapSet maps = LoadMapSet(m);
-    maps.samples = LegacyCameras(scene, maps.samples);
     return std::make_unique<runtime::Renderer>(std::move(scene), std::move(maps), threads);
 }
 

@@ -175,6 +175,7 @@ TraceManifest StartManifest(const trace::Scene& scene, const TraceJobOptions& o,
     m.sceneGiven = o.scene;
     m.width = o.width, m.height = o.height, m.spp = o.spp, m.threads = o.threads;
     m.fullTreeDepth = o.trace.fullTreeDepth;
+    m.minWeight = o.trace.minWeight;
     m.fresnel = o.trace.fresnel == trace::FresnelModel::Schlick ? "schlick" : "exact";
     m.triangles = scene.NumTriangles();
     for (const raster::Camera& c : SampleViews(scene, o.views, o.width, o.height))

@@ -126,6 +126,7 @@ TraceManifest ManifestFromJson(const json& j) {
     m.fullTreeDepth = j.at("full_tree_depth").get<int>();
     m.minWeight = j.at("min_weight").get<double>();
     m.fresnel = j.at("fresnel").get<std::string>();
+    if (m.fresnel != "exact" && m.fresnel != "schlick") throw std::runtime_error("unknown fresnel");
     m.embreeConfig = j.at("embree_config").get<std::string>();
     m.seconds = j.at("seconds").get<double>();
     m.bvhSeconds = j.at("bvh_seconds").get<double>();
@@ -144,6 +145,14 @@ std::vector<raster::Camera> TraceManifest::Cameras() const {
     std::vector<raster::Camera> cameras;
     for (const TracedView& v : views) cameras.push_back(v.camera);
     return cameras;
+}
+
+trace::TraceOptions TraceManifest::Tracing() const {
+    trace::TraceOptions o;
+    o.fullTreeDepth = fullTreeDepth;
+    o.minWeight = minWeight;
+    o.fresnel = fresnel == "schlick" ? trace::FresnelModel::Schlick : trace::FresnelModel::Exact;
+    return o;
 }
 
 void WriteTraceManifest(const TraceManifest& m) {

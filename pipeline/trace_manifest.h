@@ -48,6 +48,7 @@ struct TraceManifest {
     std::vector<std::string> leftOut;
 
     std::vector<raster::Camera> Cameras() const;
+    trace::TraceOptions Tracing() const;  // the tracer's options of the trace
 };
 
 void WriteTraceManifest(const TraceManifest& manifest);  // dir/trace.json

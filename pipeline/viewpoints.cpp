@@ -44,19 +44,3 @@ std::vector<raster::Camera> CircleViews(const raster::Camera& camera, const glm:
 }
 
 }  // namespace pem::pipeline
-
-namespace pem::pipeline {
-
-std::vector<raster::Camera> LegacyCameras(const trace::Scene& scene,
-                                          const std::vector<raster::Camera>& stored) {
-    std::vector<raster::Camera> out;
-    for (const raster::Camera& s : stored) {
-        raster::Camera c = trace::CameraForSize(*scene.camera, s.width, s.height);
-        c.eye = s.eye;
-        c.target = s.target;
-        out.push_back(c);
-    }
-    return out;
-}
-
-}  // namespace pem::pipeline

@@ -27,12 +27,3 @@ std::vector<raster::Camera> CircleViews(const raster::Camera& camera, const glm:
                                         int n, double stepDeg);
 
 }  // namespace pem::pipeline
-
-namespace pem::pipeline {
-
-// Phase A of the redesign only: the cameras as inference and the renderers rebuilt them before
-// (the scene camera with eye and target replaced), to show the redesign changes no byte.
-std::vector<raster::Camera> LegacyCameras(const trace::Scene& scene,
-                                          const std::vector<raster::Camera>& stored);
-
-}  // namespace pem::pipeline

@@ -19,6 +19,7 @@
 #include "raster/camera.h"
 #include "raster/frame.h"
 #include "runtime/lens_group_em.h"
+#include "trace/tracer.h"
 
 namespace pem::runtime {
 
@@ -29,6 +30,7 @@ struct MapSet {
     std::vector<LensGroupEm> groups;      // one per scene lens group
     int spp = 1;                          // the traced images' K×K sampling (t's unit)
     int res = 0;                          // face size of the maps
+    trace::TraceOptions tracing;          // the ray tracer's options the maps were traced with
     std::function<const raster::Texture*(int view, int group, const std::string& name)> map;
 };
 

@@ -362,7 +362,7 @@ Renderer::Renderer(trace::Scene scene, MapSet maps, int threads) : impl_(std::ma
     for (const LensGroupEm& g : m.maps.groups) m.singleShells.push_back(SingleLayerShell(g));
     m.device = std::make_unique<trace::EmbreeDevice>(trace::EmbreeOptions{threads, "auto"});
     m.embree = std::make_unique<trace::EmbreeScene>(*m.device, m.scene);
-    m.tracer = std::make_unique<trace::Tracer>(m.scene, *m.embree);
+    m.tracer = std::make_unique<trace::Tracer>(m.scene, *m.embree, m.maps.tracing);
     m.lensCentre = trace::LensCentre(m.scene);
 }
 

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # pipeline_cli.sh PEMREF DATA_DIR — the user-facing pipeline at a small size:
-#  1. scene (a): bake (3 samples), render every method and --stats, the scripted viewer, report;
+#  1. scene (a): bake (3 samples), render every method and --stats, each sample ray traced through
+#     render = the trace's reference byte for byte, the scripted viewer, report;
 #     checks: files, statistics fields, viewer frames, report contents, and that off the sample
 #     circle (10° above) hybrid and layered PEM are closer to the ray tracer than the static EM;
 #  2. the mirror sphere: bake + report; the report leaves out the refraction term (no glass) and
@@ -22,6 +23,14 @@ done
 "$pemref" render "$work/a/pem" --view sample:1 -o "$work/a/single.exr" --method pem --layers 1 \
     --threads 2 --quiet
 "$pemref" view "$work/a/pem" --keys "l1k2m" --cols 40 --rows 12 --threads 2 > "$work/a/view.txt"
+# Every sample's camera is the one it was traced with: the ray tracer through `render` gives the
+# trace's reference of that sample, byte for byte.
+for i in 0 1 2; do
+  "$pemref" render "$work/a/pem" --view "sample:$i" --method traced --spp 3 --threads 2 --quiet \
+      -o "$work/a/traced_$i.exr"
+  cmp "$work/a/traced_$i.exr" "$work/a/trace/view_00$i/reference.exr" ||
+    { echo "FAIL: render --view sample:$i --method traced differs from the trace's reference"; exit 1; }
+done
 "$pemref" report "$work/a" --threads 2 --reference-spp 5 --no-stability --quiet
 # Step 2: the mirror sphere.
 "$pemref" bake "$data/scenes/mirror_sphere.gltf" --out "$work/s" --views circle:2:10 \

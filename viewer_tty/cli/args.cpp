@@ -33,9 +33,9 @@ raster::Camera ParseViewSpec(const runtime::Renderer& renderer, const std::strin
     double az = 0, el = 0, dist = 1;
     char extra = 0;
     if (spec == "camera") {
-        c = renderer.SampleCamera(0);
-        const raster::Camera sc = trace::CameraForSize(*renderer.scene().camera, width, height);
-        c.eye = sc.eye, c.target = sc.target;
+        if (!renderer.scene().camera)
+            throw base::InputError("--view camera", "the scene has no camera");
+        c = trace::CameraForSize(*renderer.scene().camera, width, height);
     } else if (std::sscanf(spec.c_str(), "sample:%d%c", &index, &extra) == 1) {
         if (index < 0 || index >= static_cast<int>(renderer.maps().samples.size()))
             throw base::InputError("--view " + spec, "no such viewpoint sample");
