@@ -140,28 +140,15 @@ double Aspect(const trace::Object& o, int prim) {
     return longest / area2;
 }
 
-void SliverScene(const StabilityOptions& options, StabilityCase* c) {
-    TempDir dir("sliver");
-    const std::string path =
-        WriteGltf(dir.path(), "slivers",
-                  Triangles({{20, 0, 0, 21, 0, 0, 20, 1, 0},                // control
-                             {2, 0, 0, 3, 0, 0, 3, 1e-6f, 0},               // needle
-                             {4, 0, 0, 5, 0, 0, 6, 0, 0},                   // collinear: dropped
-                             {7, 0, 0, 7, 0, 0, 8, 1, 0},                   // repeated: dropped
-                             {0, 0, 0, 1e-20f, 0, 0, 0, 1e-20f, 0},         // tiny
-                             {0, 10, 0, 100, 10, 0, 100, 10.00001f, 0}}));  // long sliver
-    Checks checks;
-    const trace::Scene scene = trace::LoadScene(path);
-    checks.Expect(scene.droppedDegenerate == 2,
-                  Format("%d degenerate triangles dropped (want 2)", scene.droppedDegenerate));
-    double aspect = 1.0;
-    for (const trace::Object& o : scene.objects) {
-        for (const glm::vec3& n : o.normals)
-            checks.Expect(Finite(n) && std::fabs(glm::length(n) - 1.0f) < 1e-5f,
-                          "non-finite or non-unit normal");
-        for (size_t p = 0; p < o.triangles.size(); ++p)
-            aspect = std::max(aspect, Aspect(o, static_cast<int>(p)));
-    }
+// Rays at every triangle's centroid and vertices and along its plane, Embree against the
+// brute-force intersector: hit/miss agreement, finite hits and surface points, worst |Δt|.
+struct ProbeResult {
+    int rays = 0, agree = 0, hits = 0;
+    double dt = 0.0;
+};
+ProbeResult ProbeSlivers(const trace::Scene& scene, const StabilityOptions& options,
+                         Checks* checksOut) {
+    Checks& checks = *checksOut;
     trace::EmbreeOptions eo;
     eo.threads = std::max(1, options.threads);
     const trace::EmbreeDevice device(eo);
@@ -198,6 +185,34 @@ void SliverScene(const StabilityOptions& options, StabilityCase* c) {
                     checks.Expect(e.valid && b.valid, "control triangle's centroid missed");
             }
         }
+    return {rays, agree, hits, dt};
+}
+
+void SliverScene(const StabilityOptions& options, StabilityCase* c) {
+    TempDir dir("sliver");
+    const std::string path =
+        WriteGltf(dir.path(), "slivers",
+                  Triangles({{20, 0, 0, 21, 0, 0, 20, 1, 0},                // control
+                             {2, 0, 0, 3, 0, 0, 3, 1e-6f, 0},               // needle
+                             {4, 0, 0, 5, 0, 0, 6, 0, 0},                   // collinear: dropped
+                             {7, 0, 0, 7, 0, 0, 8, 1, 0},                   // repeated: dropped
+                             {0, 0, 0, 1e-20f, 0, 0, 0, 1e-20f, 0},         // tiny
+                             {0, 10, 0, 100, 10, 0, 100, 10.00001f, 0}}));  // long sliver
+    Checks checks;
+    const trace::Scene scene = trace::LoadScene(path);
+    checks.Expect(scene.droppedDegenerate == 2,
+                  Format("%d degenerate triangles dropped (want 2)", scene.droppedDegenerate));
+    double aspect = 1.0;
+    for (const trace::Object& o : scene.objects) {
+        for (const glm::vec3& n : o.normals)
+            checks.Expect(Finite(n) && std::fabs(glm::length(n) - 1.0f) < 1e-5f,
+                          "non-finite or non-unit normal");
+        for (size_t p = 0; p < o.triangles.size(); ++p)
+            aspect = std::max(aspect, Aspect(o, static_cast<int>(p)));
+    }
+    const ProbeResult pr = ProbeSlivers(scene, options, &checks);
+    const int rays = pr.rays, agree = pr.agree, hits = pr.hits;
+    const double dt = pr.dt;
     checks.Expect(dt < 1e-5, Format("Embree and brute force t differ by %.3g", dt));
     c->residual = dt;
     c->condition = aspect;

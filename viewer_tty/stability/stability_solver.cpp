@@ -14,6 +14,7 @@
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
 #include <limits>
+#include <tuple>
 
 #include "infer/problem.h"
 #include "infer/solver.h"
@@ -263,12 +264,7 @@ double WorstObservedError(const infer::LinearSystem& sys, const Vector& x, const
     return worst;
 }
 
-void RunSolverCase(const SolverSpec& spec, const StabilityOptions& options, StabilityCase* c) {
-    const int threads = std::max(1, options.threads);
-    const Problem p = Render(spec.frame, spec.hdr, threads);
-    infer::RegularizerWeights weights;
-    if (spec.hdr) weights.smooth = weights.pyramid = weights.prior = 0.0;
-    const infer::LinearSystem sys = infer::BuildSystem(p.a, spec.frame, 0, {p.b, {}}, weights);
+infer::SolveOptions SolverOptionsFor(const SolverSpec& spec, int threads) {
     infer::SolveOptions opt;
     opt.threads = threads;
     opt.maxIterations = 600;
@@ -280,37 +276,63 @@ void RunSolverCase(const SolverSpec& spec, const StabilityOptions& options, Stab
         opt.atol = 1e-15;
         opt.logEvery = 0;
     }
-    const infer::SolveResult r = infer::SolveIterative(sys, infer::InitialGuess(sys), opt);
-    Checks checks;
-    const bool finite = checks.Expect(AllFinite(r.x), "non-finite texels");
-    const auto [lo, hi] = Range(r.x);
-    const double rmse = infer::MaskedImageRmse(sys, r.x, threads);
-    checks.Expect(std::isfinite(rmse), "non-finite masked RMSE");
+    return opt;
+}
+
+// The solution against the case's expectations: range, masked RMSE, a finite log, and for HDR
+// the error of the well-observed texels, otherwise the unregularized solve's figures.
+struct SolutionFigures {
+    double lo = 0.0, hi = 0.0, rmse = 0.0;
+    std::string figures;
+};
+SolutionFigures CheckSolution(const SolverSpec& spec, const Problem& p,
+                              const infer::LinearSystem& sys, const infer::SolveResult& r,
+                              int threads, Checks* checks) {
+    SolutionFigures f;
+    const bool finite = checks->Expect(AllFinite(r.x), "non-finite texels");
+    std::tie(f.lo, f.hi) = Range(r.x);
+    f.rmse = infer::MaskedImageRmse(sys, r.x, threads);
+    checks->Expect(std::isfinite(f.rmse), "non-finite masked RMSE");
     bool logFinite = true;
     double excursion = 0.0;
     for (const infer::IterationRecord& rec : r.log) {
         logFinite = logFinite && std::isfinite(rec.imageRmse) && std::isfinite(rec.residualNorm);
         excursion = std::max({excursion, std::fabs(rec.texelMin), std::fabs(rec.texelMax)});
     }
-    checks.Expect(logFinite, "non-finite convergence log");
-    std::string figures;
+    checks->Expect(logFinite, "non-finite convergence log");
     if (spec.hdr) {
         const double maxTruth = *std::max_element(p.xStar.begin(), p.xStar.end());
-        checks.Expect(!finite || (lo >= 0.0 && hi <= 10.0 * maxTruth),
-                      Format("texels [%.4g, %.4g] outside [0, 10 max x*]", lo, hi));
+        checks->Expect(!finite || (f.lo >= 0.0 && f.hi <= 10.0 * maxTruth),
+                       Format("texels [%.4g, %.4g] outside [0, 10 max x*]", f.lo, f.hi));
         int observed = 0;
         const double worst = WorstObservedError(sys, r.x, p.xStar, threads, &observed);
-        checks.Expect(observed > 0 && worst < 1e-4,
-                      Format("well-observed relative error %.3g (>= 1e-4)", worst));
-        figures = Format("%d well-observed components, worst relative error %.3g", observed, worst);
+        checks->Expect(observed > 0 && worst < 1e-4,
+                       Format("well-observed relative error %.3g (>= 1e-4)", worst));
+        f.figures =
+            Format("%d well-observed components, worst relative error %.3g", observed, worst);
     } else {
-        checks.Expect(!finite || (lo >= 0.0 && hi <= 1.0),
-                      Format("texels [%.4g, %.4g] outside [0, 1]", lo, hi));
-        checks.Expect(excursion < 10.0, Format("iterate excursion %.3g >= 10", excursion));
-        checks.Expect(rmse < spec.rmseLimit,
-                      Format("masked RMSE %.3g >= %.3g", rmse, spec.rmseLimit));
-        figures = RawSolve(p, spec.frame, threads);
+        checks->Expect(!finite || (f.lo >= 0.0 && f.hi <= 1.0),
+                       Format("texels [%.4g, %.4g] outside [0, 1]", f.lo, f.hi));
+        checks->Expect(excursion < 10.0, Format("iterate excursion %.3g >= 10", excursion));
+        checks->Expect(f.rmse < spec.rmseLimit,
+                       Format("masked RMSE %.3g >= %.3g", f.rmse, spec.rmseLimit));
+        f.figures = RawSolve(p, spec.frame, threads);
     }
+    return f;
+}
+
+void RunSolverCase(const SolverSpec& spec, const StabilityOptions& options, StabilityCase* c) {
+    const int threads = std::max(1, options.threads);
+    const Problem p = Render(spec.frame, spec.hdr, threads);
+    infer::RegularizerWeights weights;
+    if (spec.hdr) weights.smooth = weights.pyramid = weights.prior = 0.0;
+    const infer::LinearSystem sys = infer::BuildSystem(p.a, spec.frame, 0, {p.b, {}}, weights);
+    const infer::SolveOptions opt = SolverOptionsFor(spec, threads);
+    const infer::SolveResult r = infer::SolveIterative(sys, infer::InitialGuess(sys), opt);
+    Checks checks;
+    const SolutionFigures sf = CheckSolution(spec, p, sys, r, threads, &checks);
+    const double lo = sf.lo, hi = sf.hi, rmse = sf.rmse;
+    const std::string& figures = sf.figures;
     c->residual = ImageRelativeResidual(sys, r.x, threads);
     const ConditionEstimate est = stability::EstimateCondition(sys, opt.columnFloor, threads);
     c->condition = est.kappa;
