@@ -240,6 +240,7 @@ struct Renderer::Impl {
         FrameStats* stats;
     };
     GroupGeometry Geometry(const GroupDraw& d, bool pemSplit);
+    std::vector<LayerUse> Uses(const GroupDraw& d, bool pemSplit) const;
     void DrawStatic(const GroupDraw& d, const GroupGeometry& gg);
     void DrawMaps(const GroupDraw& d, const GroupGeometry& gg, bool pemSplit);
     void DrawGroup(const GroupDraw& d);
@@ -340,6 +341,12 @@ void Renderer::Impl::DrawMaps(const GroupDraw& d, const GroupGeometry& gg, bool 
     batch.Draw(d.pixels, d.acc);
 }
 
+std::vector<LayerUse> Renderer::Impl::Uses(const GroupDraw& d, bool pemSplit) const {
+    return LayerUses(maps, maps.groups[static_cast<size_t>(d.group)],
+                     singleShells[static_cast<size_t>(d.group)], d.s.layers, pemSplit,
+                     d.samples.front());
+}
+
 void Renderer::Impl::DrawGroup(const GroupDraw& d) {
     const bool pemSplit =
         d.s.method == Method::Pem && maps.groups[static_cast<size_t>(d.group)].pem;
@@ -431,6 +438,41 @@ RenderedFrame RenderTraced(const trace::Tracer& tracer, const raster::Camera& ca
 
 }  // namespace
 
+std::vector<std::vector<raster::ImageF>> Renderer::LayerImages(const raster::Camera& camera,
+                                                               const RenderSettings& s, int group,
+                                                               int sample) {
+    Impl& m = *impl_;
+    FrameStats stats;
+    std::vector<double> acc;
+    const std::vector<int> samples{sample};
+    const std::vector<double> weights{1.0};
+    const std::vector<uint32_t> pixels;
+    const Impl::GroupDraw d{camera, s, group, samples, weights, pixels, &acc, &stats};
+    const LensGroupEm& g = m.maps.groups[static_cast<size_t>(group)];
+    const bool pemSplit = s.method == Method::Pem && g.pem;
+    const GroupGeometry gg = m.Geometry(d, pemSplit);
+    const std::vector<LayerUse> uses = m.Uses(d, pemSplit);
+    raster::RenderOptions ro;
+    ro.profile = raster::Profile::Linear;
+    ro.threads = s.threads;
+    std::vector<std::vector<raster::ImageF>> out(static_cast<size_t>(g.Terms()));
+    for (int term = 0; term < g.Terms(); ++term)
+        for (size_t k = 0; k < uses.size(); ++k) {
+            const raster::Texture* map = m.maps.map(sample, group, uses[k].name[term]);
+            if (!map) throw base::InputError(m.maps.name, "missing map " + uses[k].name[term]);
+            raster::Frame frame;
+            frame.width = camera.width, frame.height = camera.height, frame.depthClamp = true;
+            frame.textures.push_back(*map);
+            frame.passes.emplace_back();
+            const PassGeometry& geo = pemSplit && uses.size() == 2 && k == 0 ? gg.offHull : gg.all;
+            FillLayerPass(geo, ShellCoords(gg.exits[term], *uses[k].shell, g.emOrigin, s.threads),
+                          gg.exits[term], {}, &frame.passes[0], s.threads);
+            out[static_cast<size_t>(term)].push_back(
+                raster::Render(raster::PreparedFrame(frame), ro).imageF);
+        }
+    return out;
+}
+
 RenderedFrame Renderer::Render(const raster::Camera& camera, const RenderSettings& s) {
     Impl& m = *impl_;
     const auto tStart = Clock::now();
@@ -447,7 +489,8 @@ RenderedFrame Renderer::Render(const raster::Camera& camera, const RenderSetting
         trace::RenderFrame(*m.tracer, camera, 1, trace::Model::Surroundings, s.threads);
     out.image = std::move(surroundings.image);
     out.lensMask.assign(static_cast<size_t>(camera.width) * static_cast<size_t>(camera.height), 0);
-    const std::vector<int>& groupOf = surroundings.lensGroup;
+    out.groupOf = surroundings.lensGroup;
+    const std::vector<int>& groupOf = out.groupOf;
     out.stats.backgroundRays = surroundings.counts.Total();
     out.stats.backgroundSeconds = Since(tb);
     // Step 2: the two nearest viewpoint samples.

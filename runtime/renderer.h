@@ -68,6 +68,7 @@ struct FrameStats {
 struct RenderedFrame {
     trace::FloatImage image;        // RGB, linear (values from 8-bit maps are in [0, 1])
     std::vector<uint8_t> lensMask;  // 1 where a group with maps is seen
+    std::vector<int> groupOf;       // per pixel: the lens group its camera ray sees, -1 none
     FrameStats stats;
 };
 
@@ -79,6 +80,13 @@ class Renderer {
     Renderer& operator=(const Renderer&) = delete;
 
     RenderedFrame Render(const raster::Camera& camera, const RenderSettings& settings);
+
+    // For the error budget: one lens group's maps of one sample through their texgen passes,
+    // each layer alone (linear profile: exact texel weights, float framebuffer; no F·G, no
+    // blending): [term][layer] RGBA premultiplied, layers as drawn (innermost first).
+    std::vector<std::vector<raster::ImageF>> LayerImages(const raster::Camera& camera,
+                                                         const RenderSettings& settings, int group,
+                                                         int sample);
 
     const MapSet& maps() const;
     const trace::Scene& scene() const;

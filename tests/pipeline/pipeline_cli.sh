@@ -68,6 +68,14 @@ above = {(x["method"], x["setting"]): x["float"]["rmse"] for x in res if x["posi
 static = above[("static EM", "")]
 for key in [("hybrid", "t=5"), ("hybrid", "t=3"), ("layered PEM", "")]:
     if not above[key] < static: fail(f"10° above: {key} RMSE {above[key]} not below static EM {static}")
+budget = [b for b in r["budget"] if b["position"] == "on circle"]
+if len(budget) != 2: fail(f"error budget: {len(budget)} groups on the circle, 2 expected")
+for b in budget:
+    stages = [st["stage"] for st in b["stages"]]
+    if stages != ["two-term model", "layered EM", "maps", "hardware frame"]: fail(f"budget stages {stages}")
+    if not all(st["psnr"] is not None and 5 < st["psnr"] <= 100 for st in b["stages"]): fail(f"budget PSNR {b}")
+if not any(b["position"] == "10° above" for b in r["budget"]): fail("no off-sample budget")
+if "<rect" not in open(f"{w}/a/budget.svg").read(): fail("budget.svg has no bars")
 svg = open(f"{w}/a/report.svg").read()
 if svg.count('class="marker"') != 27: fail("report.svg: one marker per result expected")
 s = json.load(open(f"{w}/s/report.json"))

@@ -16,6 +16,7 @@
 #include "pipeline/layout.h"
 #include "pipeline/pem_set.h"
 #include "pipeline/trace_manifest.h"
+#include "viewer_tty/report/error_budget.h"
 #include "viewer_tty/report/report_writer.h"
 #include "viewer_tty/stability/stability.h"
 
@@ -247,8 +248,15 @@ void RunReportJob(const ReportJobOptions& o) {
         PipelineLeftOut(pipeline::ReadTraceManifest(traceDir), pipeline::ReadInferJson(pemDir),
                         &data);
     RunTimeLeftOut(*renderer, positions[0].camera, o.threads, &data);
+    // Step 3: the error budget (with the trace's images at the first sample).
+    if (std::filesystem::exists(traceDir + "/" + pipeline::kTraceJson)) {
+        if (o.log) o.log("error budget");
+        std::vector<BudgetPosition> at;
+        for (const Position& p : positions) at.push_back({p.name, p.camera});
+        data.budget = ErrorBudget(*renderer, pipeline::ReadTraceManifest(traceDir), at, o.threads);
+    }
     AddNotes(o.referenceSpp, &data);
-    // Step 3: the stability suite; the documents.
+    // Step 4: the stability suite; the documents.
     if (o.stability) AddStability(o, &data);
     WriteReport(data, o.dir);
 }

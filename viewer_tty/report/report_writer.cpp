@@ -304,6 +304,22 @@ std::string SvgLegend(const std::vector<std::string>& methods, double x0, double
     return s;
 }
 
+// ---- Error budget ----------------------------------------------------------------------------
+
+std::string MarkdownBudget(const std::vector<GroupBudget>& budget) {
+    if (budget.empty()) return "";
+    std::string md =
+        "\n## Error budget\n\nWhere the method loses against the ray tracer, per lens group: "
+        "each stage swaps one part of the method for its exact version (PSNR of the 8-bit sRGB "
+        "images on the group's pixels; cost = the dB the stage takes away).\n\n";
+    md += HeaderRow({"group", "position", "stage", "PSNR (dB)", "cost (dB)"}, "lllrr");
+    for (const GroupBudget& b : budget)
+        for (const BudgetStage& st : b.stages)
+            md += Row({Cell(b.group), Cell(b.position), Cell(st.stage), Num(st.psnr, "%.2f"),
+                       std::isfinite(st.cost) ? Num(st.cost, "%.2f") : "—"});
+    return md;
+}
+
 // ---- Files -------------------------------------------------------------------------------------
 
 std::string JoinPath(const std::string& dir, const std::string& name) {
@@ -333,6 +349,7 @@ std::string ReportMarkdown(const ReportData& data) {
           Row({"compiler", Cell(data.compiler)}) + Row({"build flags", Cell(data.buildFlags)});
     // Step 2: the tables, then the notes.
     md += MarkdownResults(SortedResults(data.results));
+    md += MarkdownBudget(data.budget);
     md += MarkdownLeftOut(data.leftOut) + MarkdownStability(data.stability);
     if (!data.notes.empty()) {
         md += "\n## Notes\n\n";
@@ -378,6 +395,45 @@ std::string ReportSvg(const ReportData& data) {
     return svg + SvgLegend(Methods(sorted), legendX, kTop + 10) + "</svg>\n";
 }
 
+std::string BudgetSvg(const ReportData& data) {
+    // One row of bars per (group, position): each stage's PSNR as a bar, its cost as a label.
+    const double barW = 3.0, rowH = 18.0, left = 330.0, top = 40.0;  // 3 px per dB
+    size_t rows = 0;
+    for (const GroupBudget& b : data.budget) rows += b.stages.size() + 1;
+    const double width = left + 60 * barW + 120, height = top + double(rows) * rowH + 40;
+    std::string svg =
+        "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<svg "
+        "xmlns=\"http://www.w3.org/2000/svg\" width=\"" +
+        P(width) + "\" height=\"" + P(height) +
+        "\" font-family=\"sans-serif\" font-size=\"12\">\n<rect width=\"100%\" "
+        "height=\"100%\" fill=\"#fff\"/>\n";
+    svg += SvgText(10, 22, "Error budget: PSNR after each stage (bar, dB) and what it cost",
+                   "font-size=\"15\" font-weight=\"bold\"");
+    double y = top;
+    for (const GroupBudget& b : data.budget) {
+        svg += SvgText(10, y + 13, b.group + " — " + b.position, "font-weight=\"bold\"");
+        y += rowH;
+        for (size_t k = 0; k < b.stages.size(); ++k) {
+            const BudgetStage& st = b.stages[k];
+            const double w = std::isfinite(st.psnr) ? std::clamp(st.psnr, 0.0, 60.0) * barW : 0.0;
+            svg += SvgText(20, y + 13, st.stage, "");
+            svg += "<rect x=\"" + P(left) + "\" y=\"" + P(y + 3) + "\" width=\"" + P(w) +
+                   "\" height=\"" + P(rowH - 6) + "\" fill=\"" + kColours[k % std::size(kColours)] +
+                   "\"/>\n";
+            svg += SvgText(left + w + 5, y + 13,
+                           Num(st.psnr, "%.1f") + " dB" +
+                               (std::isfinite(st.cost) ? " (−" + Num(st.cost, "%.1f") + ")" : ""),
+                           "font-size=\"11\"");
+            y += rowH;
+        }
+    }
+    for (int db = 0; db <= 60; db += 10)
+        svg += SvgText(left + db * barW, height - 15, std::to_string(db),
+                       "text-anchor=\"middle\" "
+                       "font-size=\"10\" fill=\"#666\"");
+    return svg + "</svg>\n";
+}
+
 std::string ReportJson(const ReportData& data) {
     using nlohmann::ordered_json;
     const auto scores = [](const ImageScores& s) {
@@ -418,6 +474,16 @@ std::string ReportJson(const ReportData& data) {
                                   {"residual", r.residual},
                                   {"condition", r.condition},
                                   {"detail", r.detail}});
+    j["budget"] = ordered_json::array();
+    for (const GroupBudget& b : data.budget) {
+        ordered_json stages = ordered_json::array();
+        for (const BudgetStage& st : b.stages)
+            stages.push_back({{"stage", st.stage}, {"psnr", st.psnr}, {"cost", st.cost}});
+        j["budget"].push_back({{"group", b.group},
+                               {"position", b.position},
+                               {"pixels", b.pixels},
+                               {"stages", stages}});
+    }
     j["notes"] = data.notes;
     return j.dump(2, ' ', false, ordered_json::error_handler_t::replace) + "\n";
 }
@@ -425,7 +491,8 @@ std::string ReportJson(const ReportData& data) {
 void WriteReport(const ReportData& data, const std::string& dir) {
     base::WriteTextsAtomic({{JoinPath(dir, "report.md"), ReportMarkdown(data)},
                             {JoinPath(dir, "report.svg"), ReportSvg(data)},
-                            {JoinPath(dir, "report.json"), ReportJson(data)}});
+                            {JoinPath(dir, "report.json"), ReportJson(data)},
+                            {JoinPath(dir, "budget.svg"), BudgetSvg(data)}});
 }
 
 }  // namespace pem::report

@@ -50,6 +50,20 @@ struct StabilityRow {
     std::string detail;
 };
 
+// The error budget of one lens group at one position (error_budget.h): stages in order, each
+// with the PSNR of the frame that has it and every stage before it, and the dB it cost.
+struct BudgetStage {
+    std::string stage;  // "two-term model", "layered EM", "maps", "hardware frame", ...
+    double psnr = 0.0;  // dB against the reference on the group's pixels
+    double cost = 0.0;  // PSNR before it − PSNR with it (NaN for the first stage)
+};
+struct GroupBudget {
+    std::string group;     // the group's objects
+    std::string position;  // "on circle", "between samples", "10° above"
+    size_t pixels = 0;
+    std::vector<BudgetStage> stages;
+};
+
 struct ReportData {
     std::string title, scene;
     std::string machine;
@@ -58,10 +72,11 @@ struct ReportData {
     std::vector<MethodResult> results;
     std::vector<LeftOutRow> leftOut;
     std::vector<StabilityRow> stability;
+    std::vector<GroupBudget> budget;
     std::vector<std::string> notes;
 };
 
-// Writes dir/report.md, dir/report.svg and dir/report.json (dir must exist). Throws
+// Writes dir/report.md, dir/report.svg, dir/report.json and dir/budget.svg (dir must exist). Throws
 // pem::base::InputError("<file>: <cause>") if a file cannot be written; if that happens before the
 // renames (the usual case: missing folder, full disk), none of the three is created or replaced.
 void WriteReport(const ReportData& data, const std::string& dir);
@@ -70,6 +85,7 @@ void WriteReport(const ReportData& data, const std::string& dir);
 std::string ReportMarkdown(const ReportData& data);
 std::string ReportSvg(const ReportData& data);
 std::string ReportJson(const ReportData& data);
+std::string BudgetSvg(const ReportData& data);  // one bar per stage's cost, per group
 
 // Results in report order: by method (first appearance), then setting (natural order), stable.
 std::vector<MethodResult> SortedResults(const std::vector<MethodResult>& results);

@@ -1,0 +1,187 @@
+// SPDX-License-Identifier: MIT
+// error_budget.cpp — the stage-by-stage error budget (error_budget.h).
+#include "viewer_tty/report/error_budget.h"
+
+#include <cmath>
+#include <limits>
+#include <nlohmann/json.hpp>
+
+#include "base/display_image.h"
+#include "pipeline/layout.h"
+#include "trace/image.h"
+
+namespace pem::report {
+namespace {
+
+using Rgb = std::vector<float>;  // 3 floats per pixel, rows top-down
+
+Rgb RgbOf(const trace::FloatImage& img) {
+    Rgb out(static_cast<size_t>(img.width) * static_cast<size_t>(img.height) * 3);
+    for (size_t p = 0; p < out.size() / 3; ++p)
+        for (size_t c = 0; c < 3; ++c) out[3 * p + c] = img.data[p * size_t(img.channels) + c];
+    return out;
+}
+
+// PSNR of the 8-bit sRGB display images (the PNG files) over the selected pixels.
+double DisplayPsnr(const Rgb& a, const Rgb& b, int w, int h, const std::vector<uint8_t>& mask) {
+    const base::Image8 da = base::ToDisplayImage(a, w, h, 3, 1.0f);
+    const base::Image8 db = base::ToDisplayImage(b, w, h, 3, 1.0f);
+    double se = 0.0;
+    size_t n = 0;
+    for (size_t p = 0; p < mask.size(); ++p) {
+        if (!mask[p]) continue;
+        for (size_t c = 0; c < 3; ++c) {
+            const double d = (da.rgba[4 * p + c] - db.rgba[4 * p + c]) / 255.0;
+            se += d * d;
+        }
+        ++n;
+    }
+    if (n == 0) return std::numeric_limits<double>::quiet_NaN();
+    return se > 0.0 ? 10.0 * std::log10(3.0 * static_cast<double>(n) / se) : 100.0;
+}
+
+// A group's traced images at a sample.
+struct GroupImages {
+    trace::FloatImage fg[2], b[2];
+    std::vector<trace::FloatImage> layers[2];  // layer_l_τ, every layer
+};
+
+GroupImages ReadGroupImages(const std::string& dir, int view, const runtime::LensGroupEm& g) {
+    GroupImages im;
+    for (int t = 0; t < g.Terms(); ++t) {
+        const std::string tn = runtime::TermName(t);
+        im.fg[t] = trace::ReadExr(pipeline::GroupImagePath(dir, view, g.index, "FG_" + tn));
+        im.b[t] = trace::ReadExr(pipeline::GroupImagePath(dir, view, g.index, "b_" + tn));
+        for (size_t l = 0; l < g.layers.size(); ++l)
+            im.layers[t].push_back(trace::ReadExr(pipeline::GroupImagePath(
+                dir, view, g.index, pipeline::LayerImageName(static_cast<int>(l), t))));
+    }
+    return im;
+}
+
+// Premultiplied over of per-layer RGBA values, innermost first; layer(l, v) fills v[4].
+template <class Layer>
+void Over(size_t count, const Layer& layer, float out[3]) {
+    float transmit = 1.0f;
+    out[0] = out[1] = out[2] = 0.0f;
+    for (size_t l = 0; l < count; ++l) {
+        float v[4];
+        layer(l, v);
+        for (int c = 0; c < 3; ++c) out[c] += transmit * v[c];
+        transmit *= 1.0f - v[3];
+    }
+}
+
+// greedy with its lens part replaced: background (greedy − Σ F·G b / cov) + Σ_τ F·G_τ · over_τ,
+// over_τ(p) from rgba(τ, l, p, v) (RGBA of layer l as the maps store it: coverage divided out).
+template <class LayerRgba>
+Rgb Recomposed(const Rgb& greedy, const GroupImages& im, int terms, size_t layers,
+               const LayerRgba& rgba) {
+    Rgb out = greedy;
+    for (size_t p = 0; p < out.size() / 3; ++p) {
+        const float cov = im.b[0].data[4 * p + 3];
+        if (!(cov > 1e-6f)) continue;
+        for (int t = 0; t < terms; ++t) {
+            float over[3];
+            Over(
+                layers, [&](size_t l, float* v) { rgba(t, l, p, v); }, over);
+            for (size_t c = 0; c < 3; ++c) {
+                const float fg = im.fg[t].data[4 * p + c];
+                out[3 * p + c] += fg * over[c] - fg * im.b[t].data[4 * p + c] / cov;
+            }
+        }
+    }
+    return out;
+}
+
+std::string GroupName(const runtime::LensGroupEm& g) {
+    return nlohmann::json(g.objects).dump();
+}
+
+void AddStage(GroupBudget* b, const std::string& stage, double psnr) {
+    const double before =
+        b->stages.empty() ? std::numeric_limits<double>::quiet_NaN() : b->stages.back().psnr;
+    b->stages.push_back({stage, psnr, before - psnr});
+}
+
+// The four stages at the sample for one group.
+GroupBudget SampleBudget(runtime::Renderer& renderer, const pipeline::TraceManifest& trace,
+                         const runtime::LensGroupEm& g, const runtime::RenderedFrame& hybrid,
+                         const runtime::RenderSettings& s) {
+    const int view = renderer.maps().inferred.front();
+    const raster::Camera cam = renderer.SampleCamera(view);
+    const int w = cam.width, h = cam.height;
+    const Rgb ref = RgbOf(trace::ReadExr(pipeline::FrameImagePath(trace.dir, view, "reference")));
+    const Rgb greedy = RgbOf(trace::ReadExr(pipeline::FrameImagePath(trace.dir, view, "greedy")));
+    const GroupImages im = ReadGroupImages(trace.dir, view, g);
+    std::vector<uint8_t> mask(ref.size() / 3);
+    for (size_t p = 0; p < mask.size(); ++p) mask[p] = im.b[0].data[4 * p + 3] > 0.5f;
+    GroupBudget b{GroupName(g), "on circle", 0, {}};
+    for (uint8_t m : mask) b.pixels += m;
+    AddStage(&b, "two-term model", DisplayPsnr(greedy, ref, w, h, mask));
+    const Rgb layered = Recomposed(greedy, im, g.Terms(), g.layers.size(),
+                                   [&](int t, size_t l, size_t p, float* v) {
+                                       const float cov = im.b[0].data[4 * p + 3];
+                                       for (size_t c = 0; c < 4; ++c)
+                                           v[c] = im.layers[t][l].data[4 * p + c] / cov;
+                                   });
+    AddStage(&b, "layered EM", DisplayPsnr(layered, ref, w, h, mask));
+    const auto maps = renderer.LayerImages(cam, s, g.index, view);
+    const Rgb drawn = Recomposed(greedy, im, g.Terms(), maps.empty() ? 0 : maps[0].size(),
+                                 [&](int t, size_t l, size_t p, float* v) {
+                                     for (size_t c = 0; c < 4; ++c)
+                                         v[c] = maps[size_t(t)][l].rgba[4 * p + c];
+                                 });
+    AddStage(&b, "maps", DisplayPsnr(drawn, ref, w, h, mask));
+    AddStage(&b, "hardware frame", DisplayPsnr(RgbOf(hybrid.image), ref, w, h, mask));
+    return b;
+}
+
+// Hybrid against the ray tracer at K×K on the pixels that see each group.
+std::vector<double> HybridVsTraced(runtime::Renderer& renderer, const raster::Camera& cam,
+                                   const runtime::RenderSettings& s, int spp) {
+    const runtime::RenderedFrame hybrid = renderer.Render(cam, s);
+    runtime::RenderSettings rs = s;
+    rs.method = runtime::Method::RayTraced;
+    rs.spp = spp;
+    const runtime::RenderedFrame traced = renderer.Render(cam, rs);
+    std::vector<double> out;
+    for (size_t g = 0; g < renderer.maps().groups.size(); ++g) {
+        std::vector<uint8_t> mask(hybrid.groupOf.size());
+        for (size_t p = 0; p < mask.size(); ++p) mask[p] = hybrid.groupOf[p] == int(g);
+        out.push_back(
+            DisplayPsnr(RgbOf(hybrid.image), RgbOf(traced.image), cam.width, cam.height, mask));
+    }
+    return out;
+}
+
+}  // namespace
+
+std::vector<GroupBudget> ErrorBudget(runtime::Renderer& renderer,
+                                     const pipeline::TraceManifest& trace,
+                                     const std::vector<BudgetPosition>& positions, int threads) {
+    runtime::RenderSettings s;
+    s.method = runtime::Method::Hybrid;
+    s.threads = threads;
+    std::vector<GroupBudget> out;
+    // Step 1: the stages at the sample.
+    const raster::Camera sample = renderer.SampleCamera(renderer.maps().inferred.front());
+    const runtime::RenderedFrame hybrid = renderer.Render(sample, s);
+    for (const runtime::LensGroupEm& g : renderer.maps().groups)
+        out.push_back(SampleBudget(renderer, trace, g, hybrid, s));
+    // Step 2: off the samples, against the same measure at the sample.
+    const std::vector<double> atSample = HybridVsTraced(renderer, sample, s, trace.spp);
+    for (size_t k = 1; k < positions.size(); ++k) {
+        const std::vector<double> there =
+            HybridVsTraced(renderer, positions[k].camera, s, trace.spp);
+        for (const runtime::LensGroupEm& g : renderer.maps().groups) {
+            GroupBudget b{GroupName(g), positions[k].name, 0, {}};
+            AddStage(&b, "hybrid at the sample", atSample[size_t(g.index)]);
+            AddStage(&b, "off the samples", there[size_t(g.index)]);
+            out.push_back(b);
+        }
+    }
+    return out;
+}
+
+}  // namespace pem::report

@@ -1,0 +1,45 @@
+// SPDX-License-Identifier: MIT
+// error_budget.h — where the method loses against the ray tracer, stage by stage, per lens group:
+// the teaching table of `pemref report`. Each stage swaps one part of the method for its exact
+// version; its cost is the PSNR it takes away from the frame before it.
+//
+//   std::vector<GroupBudget> b = ErrorBudget(renderer, trace, bakeDirOffPositions, threads);
+//
+// At the first viewpoint sample (the report's "on circle"), against the trace's full-tree
+// reference there (same K×K sampling), on the group's pixels (coverage > 0.5), PSNR of the
+// 8-bit sRGB display images (as the PNG files):
+//   two-term model      the greedy R + T paths instead of the full ray tree (traced)
+//   layered EM          the traced layer images composited with premultiplied over, times the
+//                       traced F·G: what perfect maps on these layers could give
+//   maps (geometry,     each layer's map drawn through its texgen pass alone (linear profile,
+//   texgen, resolution, exact texel weights), composited and modulated as above: what the
+//   solver)             shells, per-vertex lookups, the map resolution and the solve cost
+//   hardware frame      the hybrid frame as drawn: per-vertex F·G, 8-bit maps and framebuffer,
+//                       the hardware's compositing
+// Off the samples (between two samples, 10° above): the hybrid frame against the ray tracer at
+// the same K×K there, on the pixels that see the group, compared with the same measure at the
+// sample: the cost of being away from the sample.
+// Not here: the documents (report_writer.h: GroupBudget, the table and budget.svg).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "pipeline/trace_manifest.h"
+#include "raster/camera.h"
+#include "runtime/renderer.h"
+#include "viewer_tty/report/report_writer.h"
+
+namespace pem::report {
+
+struct BudgetPosition {
+    std::string name;
+    raster::Camera camera;
+};
+
+// positions[0] is the first inferred sample; the others are off the samples.
+std::vector<GroupBudget> ErrorBudget(runtime::Renderer& renderer,
+                                     const pipeline::TraceManifest& trace,
+                                     const std::vector<BudgetPosition>& positions, int threads);
+
+}  // namespace pem::report
