@@ -3,6 +3,7 @@
 #include "pipeline/json_values.h"
 
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -15,12 +16,22 @@ double Finite(const json& j) {
     return v;
 }
 
+// NaN and infinities as null (JSON has neither), and back.
+json Number(double v) {
+    return std::isfinite(v) ? json(v) : json(nullptr);
+}
+double NumberOr(const json& j, double ifNull) {
+    return j.is_null() ? ifNull : j.get<double>();
+}
+
 json LayerJson(const runtime::EmLayer& l) {
-    return {{"radius", l.radius},
-            {"records", l.records},
-            {"objects", l.objects},
-            {"occupancy", l.occupancy},
-            {"shell", ShellJson(l.shell)}};
+    json candidates = json::array();
+    for (const auto& [kind, parallax] : l.candidates)
+        candidates.push_back({{"shell", kind}, {"parallax_deg", Number(parallax)}});
+    return {{"radius", l.radius},          {"records", l.records},
+            {"objects", l.objects},        {"occupancy", l.occupancy},
+            {"shell", ShellJson(l.shell)}, {"parallax_deg", Number(l.parallaxDeg)},
+            {"candidates", candidates}};
 }
 
 runtime::EmLayer LayerFromJson(const json& j) {
@@ -31,6 +42,11 @@ runtime::EmLayer LayerFromJson(const json& j) {
     l.records = j.at("records").get<int64_t>();
     l.objects = j.at("objects").get<std::vector<std::string>>();
     l.occupancy = Finite(j.at("occupancy"));
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    l.parallaxDeg = NumberOr(j.at("parallax_deg"), nan);
+    for (const json& c : j.at("candidates"))
+        l.candidates.emplace_back(c.at("shell").get<std::string>(),
+                                  NumberOr(c.at("parallax_deg"), nan));
     return l;
 }
 
@@ -84,7 +100,12 @@ json ShellJson(const trace::Shell& shell) {
             {"type", "ellipsoid"}, {"centre", Vec3Json(e->centre)}, {"radii", Vec3Json(e->radii)}};
     if (const auto* b = std::get_if<trace::BoxShell>(&shell))
         return {{"type", "box"}, {"min", Vec3Json(b->min)}, {"max", Vec3Json(b->max)}};
-    return {{"type", "cylinder"}};
+    const auto& c = std::get<trace::CylinderShell>(shell);  // infinite ends as null
+    return {{"type", "cylinder"},
+            {"axis_xz", {c.axisXZ.x, c.axisXZ.y}},
+            {"radius", c.radius},
+            {"y_min", Number(c.yMin)},
+            {"y_max", Number(c.yMax)}};
 }
 
 trace::Shell ShellFromJson(const json& j) {
@@ -102,6 +123,15 @@ trace::Shell ShellFromJson(const json& j) {
         q.v = Vec3FromJson(j.at("v"));
         q.halfExtent = {Finite(j.at("half_extent").at(0)), Finite(j.at("half_extent").at(1))};
         return q;
+    }
+    if (type == "cylinder") {
+        trace::CylinderShell c;
+        c.axisXZ = {Finite(j.at("axis_xz").at(0)), Finite(j.at("axis_xz").at(1))};
+        c.radius = Finite(j.at("radius"));
+        c.yMin = NumberOr(j.at("y_min"), -std::numeric_limits<double>::infinity());
+        c.yMax = NumberOr(j.at("y_max"), std::numeric_limits<double>::infinity());
+        if (!(c.radius > 0.0) || !(c.yMin < c.yMax)) throw std::runtime_error("bad cylinder");
+        return c;
     }
     throw std::runtime_error("unknown shell type \"" + type + "\"");
 }

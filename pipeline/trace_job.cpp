@@ -53,6 +53,7 @@ struct Job {
     Progress progress;
     std::vector<std::vector<trace::HitRecord>> records;  // per group
     std::vector<std::vector<glm::vec3>> recordPoints;    // per group
+    std::vector<std::vector<glm::vec3>> recordOrigins;   // per group
     std::vector<double> distantSum;                      // per group
     std::vector<size_t> distantCount;
 
@@ -116,6 +117,8 @@ struct Job {
         records[gi].insert(records[gi].end(), s.records.begin(), s.records.end());
         recordPoints[gi].insert(recordPoints[gi].end(), s.recordPoints.begin(),
                                 s.recordPoints.end());
+        recordOrigins[gi].insert(recordOrigins[gi].end(), s.recordOrigins.begin(),
+                                 s.recordOrigins.end());
         distantSum[gi] += s.distantDistanceSum;
         distantCount[gi] += s.distantCount;
         manifest.views[v].segmentation += s.counts;
@@ -124,8 +127,8 @@ struct Job {
     // Step 3: a group's layers over all viewpoints' records.
     void Layers(int g) {
         const auto gi = static_cast<size_t>(g);
-        const trace::LayerInput in{records[gi], recordPoints[gi], options.layers,
-                                   0.15,        distantSum[gi],   distantCount[gi]};
+        const trace::LayerInput in{records[gi],    recordPoints[gi], options.layers,   0.15,
+                                   distantSum[gi], distantCount[gi], recordOrigins[gi]};
         groupLayers[gi] = trace::BuildLayers(scene, g, !manifest.groups[gi].glass, in);
         manifest.groups[gi].records = static_cast<int64_t>(records[gi].size());
     }
@@ -156,6 +159,8 @@ void StoreLayers(const trace::Scene& scene, const trace::GroupLayers& l, runtime
         layer.records = static_cast<int64_t>(c.recordCount);
         for (uint32_t o : c.objects) layer.objects.push_back(scene.objects[o].name);
         layer.occupancy = l.shells[i].occupancy;
+        layer.parallaxDeg = l.shells[i].parallaxDeg;
+        layer.candidates = l.shells[i].candidates;
         g->layers.push_back(layer);
     }
     g->pem = l.mirror;
@@ -212,10 +217,11 @@ TraceManifest RunTraceJob(const TraceJobOptions& o) {
     m.bvhSeconds = bvhSeconds;
     const int groups = static_cast<int>(m.groups.size());
     const int views = static_cast<int>(m.views.size());
-    Job job{scene, o, tracer, m, {}, {o, views * (2 + 2 * groups)}, {}, {}, {}, {}};
+    Job job{scene, o, tracer, m, {}, {o, views * (2 + 2 * groups)}, {}, {}, {}, {}, {}};
     job.groupLayers.resize(static_cast<size_t>(groups));
     job.records.resize(static_cast<size_t>(groups));
     job.recordPoints.resize(static_cast<size_t>(groups));
+    job.recordOrigins.resize(static_cast<size_t>(groups));
     job.distantSum.assign(static_cast<size_t>(groups), 0.0);
     job.distantCount.assign(static_cast<size_t>(groups), 0);
     for (int g = 0; g < groups; ++g)

@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <glm/glm.hpp>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "trace/shell.h"
@@ -26,6 +27,8 @@ struct EmLayer {
     int64_t records = 0;               // traced hits in the cluster (0: the layer has no maps)
     std::vector<std::string> objects;  // scene objects whose hits the cluster holds
     double occupancy = 0.0;            // fraction of direction cells holding a record
+    double parallaxDeg = 0.0;  // the shell's mean parallax over the layer's records (layers.h)
+    std::vector<std::pair<std::string, double>> candidates;  // every shell tried, its parallax
 
     bool Empty() const { return records == 0; }
 };

@@ -5,6 +5,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
+#include <set>
+#include <tuple>
 
 #include "base/parallel.h"
 #include "trace/segment.h"
@@ -33,18 +36,107 @@ double Occupancy(std::span<const glm::dvec3> points, const glm::dvec3& origin) {
            static_cast<double>(used.size());
 }
 
-LayerShell ChooseShell(const LayerCluster& layer, std::span<const glm::dvec3> points,
-                       const glm::dvec3& origin, double sparseOccupancy) {
-    LayerShell s;
-    s.occupancy = Occupancy(points, origin);
-    if (s.occupancy < sparseOccupancy && points.size() >= 3) {
-        s.kind = "quad";
-        s.shell = FitQuad(points, origin);
-    } else {
-        s.kind = "sphere";
-        s.shell = SphereShell{origin, layer.radius};
+// The floor under the group: the scene's lowest height when the group rests on it.
+std::optional<double> FloorUnder(const Scene& scene, int group) {
+    float sceneLow = std::numeric_limits<float>::infinity();
+    for (const Object& o : scene.objects) sceneLow = std::min(sceneLow, o.bounds.lo.y);
+    const float groupLow = scene.lensGroups[static_cast<size_t>(group)].bounds.lo.y;
+    if (groupLow - sceneLow < 0.01f) return static_cast<double>(sceneLow);
+    return std::nullopt;
+}
+
+// What the shell choice looks at: per layer, the frontmost record of each ray in the layer (what
+// the layer image shows), as (exit ray origin, hit point); at most kParallaxRecords of them,
+// evenly spaced in record order.
+constexpr size_t kParallaxRecords = 20000;
+
+}  // namespace
+
+double ShellParallax(const Shell& shell, std::span<const RayHit> hits, const glm::dvec3& emOrigin) {
+    if (hits.empty()) return std::numeric_limits<double>::quiet_NaN();
+    double sum = 0.0;
+    for (const RayHit& h : hits) {
+        const glm::dvec3 d = h.point - h.origin;
+        const double len = glm::length(d);
+        const std::optional<ShellHit> s =
+            len > 0.0 ? Intersect(shell, Ray{glm::vec3(h.origin), glm::vec3(d / len)})
+                      : std::nullopt;
+        if (!s || s->forced) {
+            sum += s ? 0.0 : 90.0;  // a forced quad hit keeps the ray's direction
+            continue;
+        }
+        const glm::dvec3 a = glm::normalize(s->point - emOrigin);
+        const glm::dvec3 b = glm::normalize(h.point - emOrigin);
+        sum += glm::degrees(std::acos(std::clamp(glm::dot(a, b), -1.0, 1.0)));
     }
-    return s;
+    return sum / static_cast<double>(hits.size());
+}
+
+namespace {
+
+// The candidate shells of a layer (sphere first: it wins ties).
+std::vector<LayerShell> Candidates(const LayerCluster& layer, std::span<const glm::dvec3> points,
+                                   const glm::dvec3& origin, std::optional<double> floorY,
+                                   double occupancy, double sparseOccupancy) {
+    std::vector<LayerShell> c;
+    c.push_back({"sphere", SphereShell{origin, layer.radius}, occupancy, 0.0, {}});
+    if (points.size() < 3) return c;
+    if (occupancy < sparseOccupancy)
+        c.push_back({"quad", FitQuad(points, origin), occupancy, 0.0, {}});
+    c.push_back({"box", BoxAround(origin, layer.radius, floorY), occupancy, 0.0, {}});
+    c.push_back({"box", FitBox(points, floorY), occupancy, 0.0, {}});
+    c.push_back({"ellipsoid", FitEllipsoid(points, origin), occupancy, 0.0, {}});
+    CylinderShell cyl = FitCylinder(points, glm::dvec2(origin.x, origin.z), false);
+    if (floorY) cyl.yMin = *floorY;
+    c.push_back({"cylinder", cyl, occupancy, 0.0, {}});
+    cyl.radius = layer.radius;
+    c.push_back({"cylinder", cyl, occupancy, 0.0, {}});
+    return c;
+}
+
+// The shell with the least parallax over the layer's records; without ray origins, the sphere
+// (or the quad impostor for a sparsely occupied layer), as before.
+LayerShell ChooseShell(const LayerCluster& layer, std::span<const glm::dvec3> points,
+                       std::span<const RayHit> hits, const glm::dvec3& origin,
+                       std::optional<double> floorY, double sparseOccupancy) {
+    const double occupancy = Occupancy(points, origin);
+    std::vector<LayerShell> candidates =
+        Candidates(layer, points, origin, floorY, occupancy, sparseOccupancy);
+    if (hits.empty()) {
+        LayerShell s =
+            candidates.size() > 1 && candidates[1].kind == "quad" ? candidates[1] : candidates[0];
+        s.parallaxDeg = std::numeric_limits<double>::quiet_NaN();
+        return s;
+    }
+    size_t best = 0;
+    std::vector<std::pair<std::string, double>> tried;
+    for (size_t k = 0; k < candidates.size(); ++k) {
+        candidates[k].parallaxDeg = ShellParallax(candidates[k].shell, hits, origin);
+        tried.emplace_back(candidates[k].kind, candidates[k].parallaxDeg);
+        if (candidates[k].parallaxDeg < candidates[best].parallaxDeg) best = k;
+    }
+    candidates[best].candidates = tried;
+    return candidates[best];
+}
+
+// Per layer, the frontmost record of each ray in the layer, thinned to kParallaxRecords.
+std::vector<std::vector<RayHit>> FrontmostHits(const LayerInput& in, const LayerClustering& c) {
+    std::vector<std::vector<RayHit>> hits(c.layers.size());
+    if (in.origins.size() != in.records.size()) return hits;
+    std::set<std::tuple<size_t, uint32_t, uint64_t>> seen;  // (layer, viewpoint, ray)
+    for (size_t i = 0; i < in.records.size(); ++i) {
+        const auto l = static_cast<size_t>(c.recordLayer[i]);
+        if (seen.insert({l, in.records[i].viewpointId, in.records[i].rayId}).second)
+            hits[l].push_back({glm::dvec3(in.origins[i]), glm::dvec3(in.points[i])});
+    }
+    for (std::vector<RayHit>& h : hits) {
+        if (h.size() <= kParallaxRecords) continue;
+        std::vector<RayHit> thinned;
+        for (size_t k = 0; k < kParallaxRecords; ++k)
+            thinned.push_back(h[k * h.size() / kParallaxRecords]);
+        h.swap(thinned);
+    }
+    return hits;
 }
 
 // All vertices of the group's objects (for the local ellipsoid).
@@ -63,12 +155,7 @@ void SetMirrorShells(const Scene& scene, int group, const LayerInput& in, GroupL
     out.localShell = FitEllipsoid(vertices, origin);
     out.distantMeanDistance =
         in.distantCount ? in.distantDistanceSum / static_cast<double>(in.distantCount) : 0.0;
-    float sceneLow = std::numeric_limits<float>::infinity();
-    for (const Object& o : scene.objects) sceneLow = std::min(sceneLow, o.bounds.lo.y);
-    const float groupLow = scene.lensGroups[static_cast<size_t>(group)].bounds.lo.y;
-    std::optional<double> floorY;
-    if (groupLow - sceneLow < 0.01f) floorY = static_cast<double>(sceneLow);
-    out.distantShell = BoxAround(origin, out.distantMeanDistance, floorY);
+    out.distantShell = BoxAround(origin, out.distantMeanDistance, FloorUnder(scene, group));
 }
 
 }  // namespace
@@ -96,11 +183,13 @@ GroupLayers BuildLayers(const Scene& scene, int group, bool mirror, const LayerI
     std::vector<std::vector<glm::dvec3>> points(n);
     for (size_t i = 0; i < in.records.size(); ++i)
         points[static_cast<size_t>(out.clustering.recordLayer[i])].emplace_back(in.points[i]);
+    const std::vector<std::vector<RayHit>> hits = FrontmostHits(in, out.clustering);
+    const std::optional<double> floorY = FloorUnder(scene, group);
     for (size_t l = 0; l < n; ++l) {
         const LayerCluster& layer = out.clustering.layers[l];
         for (uint32_t o : layer.objects) out.objectLayer[o] = static_cast<int>(l);
-        out.shells.push_back(
-            ChooseShell(layer, points[l], glm::dvec3(out.emOrigin), in.sparseOccupancy));
+        out.shells.push_back(ChooseShell(layer, points[l], hits[l], glm::dvec3(out.emOrigin),
+                                         floorY, in.sparseOccupancy));
     }
     if (mirror) SetMirrorShells(scene, group, in, out);
     return out;

@@ -4,9 +4,14 @@
 // Layers: cluster.h's LBG over the hit records of ALL viewpoints (distance from the group's EM
 // origin = shell.h EmOrigin over the group's triangles), whole objects to one layer. An object
 // without records is put, hit by hit, into the layer of nearest radius.
-// Shell per layer: a sphere at the EM origin with the cluster's radius, unless the layer is
-// sparsely occupied — fewer than `sparseOccupancy` of the 6·16·16 cube-direction cells around
-// the EM origin hold a record — then a quad impostor (shell.h FitQuad). Mirror-only groups also
+// Shell per layer: the candidate with the least parallax (ShellParallax) over the layer's
+// records — the frontmost record of each ray, as (exit ray origin, hit point): a sphere at the
+// EM origin with the cluster's radius, a box of that half size and one bounding the records,
+// an ellipsoid fit, two vertical cylinders (bounding, and of the cluster's radius), and for a
+// sparsely occupied layer (fewer than `sparseOccupancy` of the 6·16·16 cube-direction cells
+// hold a record) a quad impostor; boxes and cylinders stand on the floor when the group rests on
+// the lowest geometry of the scene (the PEM paper's box for objects on a surface). Without ray
+// origins: the sphere, or the quad for a sparse layer. Mirror-only groups also
 // get the PEM split's shells: an ellipsoid for the local layer (FitEllipsoid over the group's
 // vertices, minimum volume, centred at the EM origin) and a box for the distant layer (half size
 // = mean distance of the distant hits, bottom on the floor when the group rests on the lowest
@@ -32,9 +37,14 @@
 namespace pem::trace {
 
 struct LayerShell {
-    std::string kind;  // "sphere" or "quad"
+    std::string kind;  // "sphere", "box", "cylinder", "ellipsoid" or "quad"
     Shell shell;
     double occupancy = 0.0;  // fraction of direction cells holding a record
+    // The parallax of the shell (degrees): the mean angle, seen from the EM origin, between
+    // where a record's exit ray meets the shell and where it met the scene (0: the shell passes
+    // through what the layer shows). NaN when the records carry no ray origins.
+    double parallaxDeg = 0.0;
+    std::vector<std::pair<std::string, double>> candidates;  // every kind tried, its parallax
 };
 
 struct GroupLayers {
@@ -58,9 +68,19 @@ struct LayerInput {
     double sparseOccupancy = 0.15;
     double distantDistanceSum = 0.0;  // mirror-only groups (segment.h)
     size_t distantCount = 0;
+    std::span<const glm::vec3> origins;  // per record: its exit ray's origin (may be empty)
 };
 
 GroupLayers BuildLayers(const Scene& scene, int group, bool mirror, const LayerInput& input);
+
+// An exit ray (from `origin`) and the scene point it met.
+struct RayHit {
+    glm::dvec3 origin, point;
+};
+// A shell's parallax over such hits: the mean angle (degrees), seen from the EM origin, between
+// where each ray meets the shell and the scene point it met (a miss counts 90°). Zero for a
+// shell through every point, and for rays that leave from the EM origin itself.
+double ShellParallax(const Shell& shell, std::span<const RayHit> hits, const glm::dvec3& emOrigin);
 
 // The layer of a hit on `object` at `distance` from the EM origin.
 int LayerOf(const GroupLayers& layers, int object, double distance);

@@ -50,7 +50,7 @@ FirstBounce BounceOf(const Tracer& tracer, const Ray& ray, const Hit& hit) {
 // Accumulators of one image row (merged in row order by SegmentGroup).
 struct RowRecords {
     std::vector<HitRecord> records;
-    std::vector<glm::vec3> points;
+    std::vector<glm::vec3> points, origins;
     double distantSum = 0.0;
     size_t distantCount = 0;
     RayCounts counts;
@@ -70,6 +70,7 @@ struct Segmenter {
             row.records.push_back({glm::length(glm::dvec3(p) - glm::dvec3(origin)),
                                    static_cast<uint32_t>(h.object), viewpoint, rayId});
             row.points.push_back(p);
+            row.origins.push_back(exit.origin);
         }
     }
 
@@ -184,6 +185,7 @@ GroupSegmentation SegmentGroup(const Tracer& tracer, const raster::Camera& camer
     for (RowRecords& r : rows) {
         out.records.insert(out.records.end(), r.records.begin(), r.records.end());
         out.recordPoints.insert(out.recordPoints.end(), r.points.begin(), r.points.end());
+        out.recordOrigins.insert(out.recordOrigins.end(), r.origins.begin(), r.origins.end());
         out.distantDistanceSum += r.distantSum;
         out.distantCount += r.distantCount;
         out.counts += r.counts;

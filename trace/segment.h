@@ -40,8 +40,9 @@ struct GroupSegmentation {
     bool mirror = false;                  // the PEM split below is filled
     FloatImage local, distant, fresnel1;  // RGBA
     std::vector<HitRecord> records;
-    std::vector<glm::vec3> recordPoints;  // world position of each record's hit
-    double distantDistanceSum = 0.0;      // distance of distant hits from the EM origin
+    std::vector<glm::vec3> recordPoints;   // world position of each record's hit
+    std::vector<glm::vec3> recordOrigins;  // the exit ray's origin of each record
+    double distantDistanceSum = 0.0;       // distance of distant hits from the EM origin
     size_t distantCount = 0;
     RayCounts counts;
 };

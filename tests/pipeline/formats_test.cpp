@@ -39,16 +39,25 @@ runtime::LensGroupEm SomeGroup(int index) {
     g.records = 1234;
     g.lbgIterations = 7;
     g.lbgConverged = true;
-    runtime::EmLayer inner{"sphere", trace::SphereShell{{0.1, 0.2, 0.3}, 1.5}, 1.25, 99, {"a"},
-                           0.5};
+    runtime::EmLayer inner{"sphere", trace::SphereShell{{0.1, 0.2, 0.3}, 1.5}, 1.25, 99, {"a"}, 0.5,
+                           0.75,     {{"sphere", 0.75}, {"cylinder", 1.5}}};
     trace::QuadShell q;
     q.centre = {0.0, -0.5, 0.0};
     q.normal = {0.0, 1.0, 0.0};
     q.u = {1.0, 0.0, 0.0};
     q.v = {0.0, 0.0, -1.0};
     q.halfExtent = {3.0, 4.0};
-    runtime::EmLayer floor{"quad", q, 2.5, 0, {}, 0.0};
-    g.layers = {inner, floor};
+    runtime::EmLayer floor{"quad", q, 2.5, 0, {}, 0.0, 0.0, {}};
+    runtime::EmLayer room{
+        "cylinder",
+        trace::CylinderShell{{0.5, -1.0}, 3.0, 0.0, std::numeric_limits<double>::infinity()},
+        9.0,
+        3,
+        {},
+        0.1,
+        std::numeric_limits<double>::quiet_NaN(),
+        {}};
+    g.layers = {inner, floor, room};
     if (!g.glass) {
         g.pem = true;
         g.localShell = trace::EllipsoidShell{{0.0, 0.5, 0.0}, {0.3, 0.4, 0.5}};
@@ -70,6 +79,11 @@ void ExpectSameGroup(const runtime::LensGroupEm& a, const runtime::LensGroupEm& 
         EXPECT_EQ(a.layers[l].kind, b.layers[l].kind);
         EXPECT_EQ(a.layers[l].radius, b.layers[l].radius);
         EXPECT_EQ(a.layers[l].records, b.layers[l].records);
+        EXPECT_EQ(std::isnan(a.layers[l].parallaxDeg), std::isnan(b.layers[l].parallaxDeg));
+        if (!std::isnan(a.layers[l].parallaxDeg)) {
+            EXPECT_EQ(a.layers[l].parallaxDeg, b.layers[l].parallaxDeg);
+        }
+        EXPECT_EQ(a.layers[l].candidates.size(), b.layers[l].candidates.size());
     }
     EXPECT_EQ(a.pem, b.pem);
     EXPECT_TRUE(a.localShell == b.localShell);

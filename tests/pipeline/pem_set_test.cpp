@@ -45,7 +45,7 @@ PemManifest MakePemDir(const fs::path& dir) {
     t.views = {{c, 0, 0, {}, {}, {}, {}, {}, {}, {}, {}}};
     runtime::LensGroupEm g;
     g.objects = {"mirror_sphere"};
-    g.layers = {{"sphere", trace::SphereShell{{0.0, 0.5, 0.0}, 5.0}, 5.0, 10, {}, 1.0}};
+    g.layers = {{"sphere", trace::SphereShell{{0.0, 0.5, 0.0}, 5.0}, 5.0, 10, {}, 1.0, 0.0, {}}};
     g.pem = true;
     g.localShell = trace::EllipsoidShell{{0.0, 0.5, 0.0}, {0.6, 0.6, 0.6}};
     g.distantShell = trace::BoxShell{{-5.0, -0.5, -5.0}, {5.0, 4.0, 5.0}};

@@ -52,8 +52,9 @@ struct Fixture {
         LensGroupEm g;
         g.objects = {"mirror_sphere"};
         g.emOrigin = centre;
-        g.layers = {{"sphere", trace::SphereShell{glm::dvec3(centre), 2.0}, 2.0, 5, {}, 1.0},
-                    {"sphere", trace::SphereShell{glm::dvec3(centre), 6.0}, 6.0, 5, {}, 1.0}};
+        g.layers = {
+            {"sphere", trace::SphereShell{glm::dvec3(centre), 2.0}, 2.0, 5, {}, 1.0, 0.0, {}},
+            {"sphere", trace::SphereShell{glm::dvec3(centre), 6.0}, 6.0, 5, {}, 1.0, 0.0, {}}};
         m.groups = {g};
         m.spp = 1;
         m.res = 8;

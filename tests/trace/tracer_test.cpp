@@ -204,9 +204,15 @@ TEST(Tracer, SegmentedImagesAndLayerAlphaInRange) {
         }
         if (s.mirror) ExpectInRange(s.local, 3, 0.0f, 1.0f, "local alpha");
         ASSERT_FALSE(s.records.empty());
-        LayerInput in{s.records, s.recordPoints, 2, 0.15, s.distantDistanceSum, s.distantCount};
+        ASSERT_EQ(s.recordOrigins.size(), s.records.size());
+        LayerInput in{s.records,      s.recordPoints, 2, 0.15, s.distantDistanceSum,
+                      s.distantCount, s.recordOrigins};
         const GroupLayers layers = BuildLayers(scene, g, s.mirror, in);
         ASSERT_FALSE(layers.clustering.layers.empty());
+        for (const LayerShell& sh : layers.shells) {  // the least parallax of the tried shells
+            ASSERT_FALSE(sh.candidates.empty());
+            for (const auto& [kind, parallax] : sh.candidates) EXPECT_LE(sh.parallaxDeg, parallax);
+        }
         const LayerImages li = RenderLayers(tracer, cam, 2, layers, 2);
         float alphaSum = 0.0f;
         for (int t = 0; t < s.terms; ++t)
