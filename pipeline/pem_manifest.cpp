@@ -82,7 +82,7 @@ PemManifest PemManifestFor(const TraceManifest& trace, const std::string& pemDir
     m.scene = SceneForStorage(pemDir, scene);
     m.sceneGiven = trace.sceneGiven;
     m.traceDir = SceneForStorage(pemDir, trace.dir);
-    m.traceDirGiven = trace.dir;
+    m.traceDirGiven = AbsolutePath(trace.dir);
     m.width = trace.width;
     m.height = trace.height;
     m.spp = trace.spp;

@@ -177,7 +177,7 @@ TraceManifest StartManifest(const trace::Scene& scene, const TraceJobOptions& o,
     TraceManifest m;
     m.dir = o.outDir;
     m.scene = SceneForStorage(o.outDir, o.scene);
-    m.sceneGiven = o.scene;
+    m.sceneGiven = AbsolutePath(o.scene);
     m.width = o.width, m.height = o.height, m.spp = o.spp, m.threads = o.threads;
     m.fullTreeDepth = o.trace.fullTreeDepth;
     m.minWeight = o.trace.minWeight;

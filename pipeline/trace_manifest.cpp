@@ -176,6 +176,12 @@ std::string ResolveScene(const std::string& dir, const std::string& stored,
     return given;
 }
 
+std::string AbsolutePath(const std::string& path) {
+    std::error_code ec;
+    const std::filesystem::path p = std::filesystem::absolute(path, ec);
+    return (ec ? std::filesystem::path(path) : p).lexically_normal().string();
+}
+
 std::string SceneForStorage(const std::string& dir, const std::string& scenePath) {
     namespace fs = std::filesystem;
     std::error_code ec;

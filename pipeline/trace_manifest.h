@@ -33,7 +33,7 @@ struct TracedView {
 struct TraceManifest {
     std::string dir;         // the trace directory (not stored: where it was read or written)
     std::string scene;       // the scene file, relative to dir when possible
-    std::string sceneGiven;  // the scene file as given on the command line
+    std::string sceneGiven;  // the scene file as given on the command line, made absolute
     int width = 0, height = 0;
     int spp = 1;  // K×K samples per pixel
     int threads = 1, fullTreeDepth = 6;
@@ -61,5 +61,8 @@ std::string ResolveScene(const std::string& dir, const std::string& stored,
 // The path to store for `scenePath` in a directory `dir`: relative to dir when both are on
 // the same file system tree, else absolute.
 std::string SceneForStorage(const std::string& dir, const std::string& scenePath);
+
+// `path` made absolute against the working directory (lexically normal).
+std::string AbsolutePath(const std::string& path);
 
 }  // namespace pem::pipeline

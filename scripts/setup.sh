@@ -9,6 +9,7 @@ packages=(
   libeigen3-dev libsuitesparse-dev
   libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri
   tmux python3 python3-scipy openexr clang-format
+  assimp-testmodels
 )
 missing=()
 for p in "${packages[@]}"; do

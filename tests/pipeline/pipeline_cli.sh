@@ -32,6 +32,13 @@ for i in 0 1 2; do
     { echo "FAIL: render --view sample:$i --method traced differs from the trace's reference"; exit 1; }
 done
 "$pemref" report "$work/a" --threads 2 --reference-spp 5 --no-stability --quiet
+# A baked directory renders from anywhere: copied elsewhere and rendered from another working
+# directory, the same bytes.
+cp -r "$work/a" "$work/copied"
+(cd / && "$pemref" render "$work/copied/pem" --view sample:1 --method pem --threads 2 --quiet \
+    -o "$work/copied/moved.png")
+"$pemref" render "$work/a/pem" --view sample:1 --method pem --threads 2 --quiet -o "$work/a/here.png"
+cmp "$work/copied/moved.png" "$work/a/here.png" || { echo "FAIL: a copied bake renders differently"; exit 1; }
 # Step 2: the mirror sphere.
 "$pemref" bake "$data/scenes/mirror_sphere.gltf" --out "$work/s" --views circle:2:10 \
     --size 96x72 --spp 2 --res 16 --threads 2 --quiet

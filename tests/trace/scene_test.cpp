@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // scene_test.cpp — trace/scene.h: the two bundled scenes load with the documented objects,
 // materials, lens groups, camera, lights and environment; every malformed input (our crafted
-// tests/data/bad_scenes and Debian's assimp-testmodels when installed) gives a one-line
+// tests/data/bad_scenes and Debian's assimp-testmodels, which setup.sh installs) gives a one-line
 // pem::base::InputError naming the file.
 #include "trace/scene.h"
 
@@ -287,7 +287,8 @@ TEST(SceneErrors, MissingFileIsAnInputError) {
 // give an base::InputError; odd-but-loadable ones must load. Only files present are counted.
 TEST(SceneErrors, AssimpTestModelsNeverCrash) {
     const std::string root = "/usr/share/assimp/models/glTF2/";
-    if (!std::filesystem::is_directory(root)) GTEST_SKIP() << "assimp-testmodels not installed";
+    ASSERT_TRUE(std::filesystem::is_directory(root))
+        << "assimp-testmodels not installed (scripts/setup.sh installs it)";
     const std::vector<std::pair<std::string, std::string>> broken = {
         {"IndexOutOfRange/IndexOutOfRange.gltf", "out of range"},
         {"IndexOutOfRange/AllIndicesOutOfRange.gltf", "out of range"},
@@ -345,7 +346,8 @@ TEST(SceneErrors, AssimpTestModelsNeverCrash) {
 // A textured box: the base colour texture is decoded to linear float and sampled by uv.
 TEST(Scene, BaseColorTextureIsSampled) {
     const std::string path = "/usr/share/assimp/models/glTF2/BoxTextured-glTF/BoxTextured.gltf";
-    if (!std::filesystem::exists(path)) GTEST_SKIP() << "assimp-testmodels not installed";
+    ASSERT_TRUE(std::filesystem::exists(path))
+        << "assimp-testmodels not installed (scripts/setup.sh installs it)";
     const Scene s = LoadScene(path);
     ASSERT_EQ(s.textures.size(), 1u);
     EXPECT_GT(s.textures[0].width, 0);

@@ -3,10 +3,10 @@
 # `BINARY ARGS...` in a detached 80×24 tmux session (its own server socket), sends keys, captures
 # the pane with escapes (`tmux capture-pane -p -e`), checks for half blocks, 24-bit colours and the
 # status line, sends q and checks that the process exited with status 0 and left the alternate
-# screen. Exit 0 = pass, 1 = fail, 77 = skipped (no tmux).
+# screen. Exit 0 = pass, 1 = fail (also without tmux: scripts/setup.sh installs it).
 set -uo pipefail
 [ $# -ge 1 ] || { echo "usage: $0 BINARY [ARGS...]" >&2; exit 2; }
-command -v tmux >/dev/null || { echo "viewer_tmux: tmux not installed, skipped"; exit 77; }
+command -v tmux >/dev/null || { echo "FAIL: tmux not installed (scripts/setup.sh installs it)"; exit 1; }
 
 bin=$(realpath "$1"); shift
 work=$(mktemp -d)
