@@ -53,6 +53,33 @@ Texture2D ConvertImage(const Context& ctx, int textureIndex, const std::string& 
     return tex;
 }
 
+// The glTF sampler of a texture (absent: LINEAR, REPEAT); unknown enum values are errors.
+TextureSampler ConvertSampler(const Context& ctx, int samplerIndex, const std::string& where) {
+    TextureSampler s;
+    if (samplerIndex < 0) return s;
+    const auto& m = ctx.model;
+    if (static_cast<size_t>(samplerIndex) >= m.samplers.size())
+        Fail(ctx, where + ": sampler " + std::to_string(samplerIndex) + " out of range");
+    const tinygltf::Sampler& g = m.samplers[static_cast<size_t>(samplerIndex)];
+    if (g.magFilter != -1 && g.magFilter != 9728 && g.magFilter != 9729)
+        Fail(ctx, where + ": sampler magFilter " + std::to_string(g.magFilter) + " is not valid");
+    if (g.minFilter != -1 &&
+        (g.minFilter < 9728 || g.minFilter > 9987 || (g.minFilter > 9729 && g.minFilter < 9984)))
+        Fail(ctx, where + ": sampler minFilter " + std::to_string(g.minFilter) + " is not valid");
+    s.nearest = g.magFilter == 9728;
+    s.minFilter = g.minFilter;
+    auto wrap = [&](int v, const char* name) {
+        if (v == 10497) return TexWrap::Repeat;
+        if (v == 33071) return TexWrap::ClampToEdge;
+        if (v == 33648) return TexWrap::MirroredRepeat;
+        Fail(ctx, where + ": sampler " + name + " " + std::to_string(v) + " is not valid");
+        return TexWrap::Repeat;
+    };
+    s.wrapS = wrap(g.wrapS, "wrapS");
+    s.wrapT = wrap(g.wrapT, "wrapT");
+    return s;
+}
+
 // The Scene::textures index for a glTF texture, converting it on first use.
 int TextureSlot(const Context& ctx, const tinygltf::TextureInfo& info, const std::string& where,
                 std::map<int, int>* cache, Scene* scene) {
@@ -65,6 +92,8 @@ int TextureSlot(const Context& ctx, const tinygltf::TextureInfo& info, const std
     auto it = cache->find(info.index);
     if (it != cache->end()) return it->second;
     scene->textures.push_back(ConvertImage(ctx, info.index, where));
+    scene->textures.back().sampler =
+        ConvertSampler(ctx, ctx.model.textures[static_cast<size_t>(info.index)].sampler, where);
     const int slot = static_cast<int>(scene->textures.size()) - 1;
     (*cache)[info.index] = slot;
     return slot;

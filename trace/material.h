@@ -25,10 +25,23 @@ enum class MaterialKind { Diffuse, Mirror, Glass };
 
 const char* MaterialKindName(MaterialKind kind);
 
+// A glTF sampler as the tracer honours it (glTF 2.0 §3.8.4). The tracer samples the finest
+// level — a ray has no footprint — which is where GL uses the magnification filter; so
+// magFilter (NEAREST or LINEAR, LINEAR when undefined) picks the filter and minFilter (kept for
+// the record) does not apply. Wraps as GL defines them on texel coordinates.
+enum class TexWrap { Repeat, ClampToEdge, MirroredRepeat };
+struct TextureSampler {
+    bool nearest = false;  // magFilter NEAREST (9728); LINEAR (9729) or undefined otherwise
+    int minFilter = -1;    // the glTF value, -1 undefined (not used: see above)
+    TexWrap wrapS = TexWrap::Repeat, wrapT = TexWrap::Repeat;
+    bool operator==(const TextureSampler&) const = default;
+};
+
 struct Texture2D {
     std::string name;
     int width = 0, height = 0;
     std::vector<float> rgb;  // width · height · 3, linear, rows top-down
+    TextureSampler sampler;
     bool operator==(const Texture2D&) const = default;
 };
 
@@ -47,7 +60,9 @@ struct Material {
     bool IsLens() const { return kind != MaterialKind::Diffuse; }  // mirror or glass
 };
 
-// Bilinear, REPEAT-wrapped lookup at glTF uv (texel centres at (i + 0.5)/width).
+// The texture at glTF uv (texel centres at (i + 0.5)/width, v down the image) with its sampler:
+// nearest texel floor(u·w) or bilinear between floor(u·w − 0.5) and the next, each texel
+// coordinate wrapped by the sampler's wrap mode.
 glm::vec3 SampleTexture(const Texture2D& texture, glm::vec2 uv);
 
 }  // namespace pem::trace
