@@ -17,7 +17,8 @@
 
 namespace pem::raster {
 
-// What a band worker writes into: the picture, or (matrix mode) the rows of A.
+// What a band worker writes into: the picture, or (matrix mode) the rows of A; and the depth
+// buffer when the frame has one (depth.h values, rows top-down like the picture).
 struct FragmentTarget {
     const PreparedFrame* frame;
     RenderOptions options;
@@ -25,6 +26,7 @@ struct FragmentTarget {
     ImageF* imageF;                                               // Linear profile
     RenderingMatrix* matrix;                                      // matrix mode: offsets per row
     std::vector<std::vector<std::pair<uint32_t, double>>>* rows;  // matrix mode: entries per row
+    std::vector<uint32_t>* depth = nullptr;                       // Frame::depth set: its buffer
 };
 
 constexpr int kBandQuadRows = 4;  // rows of 2x2 quads per band (8 pixel rows)
@@ -38,9 +40,10 @@ using SetupChunk = std::vector<std::vector<TriangleSetup>>;
 
 // Draws the triangles of one pass geometry into the row bands owned by `worker` of `workers`
 // (band b of kBandQuadRows quad rows belongs to worker b % workers), for every draw. The passes
-// of all draws have the same positions and indices, so coverage is computed once per lane
-// group; the draws of one variant have equal vertices, so interpolation and the filter
-// footprints of equally shaped textures are computed once per lane group and variant.
+// of all draws have the same positions and indices, so coverage and fragment depth are computed
+// once per lane group (each draw tests its own depth buffer); the draws of one variant have equal
+// vertices, so interpolation and the filter footprints of equally shaped textures are computed
+// once per lane group and variant.
 using DrawBandsFn = void (*)(const std::vector<std::vector<PassDraw>>& variants,
                              const SetupChunk& triangles, int worker, int workers);
 

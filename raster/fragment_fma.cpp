@@ -14,6 +14,7 @@
 
 #include "raster/blend.h"
 #include "raster/cube_lookup.h"
+#include "raster/depth.h"
 #include "raster/fragment.h"
 #include "raster/lod.h"
 #include "raster/numeric.h"

@@ -1,22 +1,25 @@
 // SPDX-License-Identifier: MIT
 // frame.h — the value types that describe one frame for raster/: textures (cube maps and 2D
 // textures, RGBA8, every MIP level given explicitly), sampler state, passes of clip-space
-// triangles, blend state. A Frame is what a raster case file (viewer_tty/conformance/case_file.h)
-// holds and what both pemref's rasterizer and the OpenGL reference harness (pemref-gl) render.
+// triangles, blend state, an optional depth buffer and per-pass depth tests. A Frame is what a
+// raster case file (viewer_tty/conformance/case_file.h) holds and what both pemref's rasterizer
+// and the OpenGL reference harness (pemref-gl) render.
 //
 // Conventions (shared by every module):
 //  - Cube faces in GL order: 0 +X, 1 -X, 2 +Y, 3 -Y, 4 +Z, 5 -Z (GL 4.6 table 8.19).
 //  - Texel (i, j) of a face or 2D level: i = column along s, j = row along t; byte offset
 //    ((j * size + i) * 4) inside that face/level image, exactly what glTexImage2D receives.
-//  - Images (Image8, ImageF) are stored rows top-down: row 0 is the top of the picture, which is
-//    GL window y = height - 1 (glReadPixels rows reversed).
-// Not here: parsing (viewer_tty/conformance/case_file.h), rendering (raster/render.h).
+//  - Images (Image8, ImageF) and depth buffers are stored rows top-down: row 0 is the top of the
+//    picture, which is GL window y = height - 1 (glReadPixels rows reversed).
+// Not here: parsing (viewer_tty/conformance/case_file.h), rendering (raster/render.h), depth
+// arithmetic (raster/depth.h).
 #pragma once
 
 #include <algorithm>
 #include <array>
 #include <cstdint>
 #include <glm/glm.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -87,6 +90,36 @@ struct BlendState {
     static BlendState Multiply();  // DST_COLOR, ZERO
 };
 
+// Depth ----------------------------------------------------------------------------------------
+//
+//   frame.depth = DepthBuffer{DepthFormat::Z24, 1.0f};  // GL_DEPTH_COMPONENT24, glClearDepth(1)
+//   pass.depthTest = DepthTest{DepthFunc::Less, true};  // glDepthFunc(GL_LESS), glDepthMask(1)
+//   later.depthTest = DepthTest{DepthFunc::Equal, false};  // same geometry again (multipass)
+//   other.depthTest.reset();  // glDisable(GL_DEPTH_TEST): neither tests nor writes
+// The arithmetic (llvmpipe's) is in raster/depth.h.
+
+// The depth renderbuffer's internal format: GL_DEPTH_COMPONENT16 (Z16_UNORM),
+// GL_DEPTH_COMPONENT24 (llvmpipe: Z24X8_UNORM, 24-bit unorm in a 32-bit word) or
+// GL_DEPTH_COMPONENT32F (Z32_FLOAT).
+enum class DepthFormat { Z16, Z24, Z32F };
+
+// glDepthFunc: the fragment passes when `fragment FUNC stored` holds.
+enum class DepthFunc { Never, Less, Equal, LEqual, Greater, NotEqual, GEqual, Always };
+
+// A frame's depth buffer: its format and glClearDepth value (in [0, 1]), cleared with the colour.
+struct DepthBuffer {
+    DepthFormat format = DepthFormat::Z24;
+    float clear = 1.0f;
+    bool operator==(const DepthBuffer&) const = default;
+};
+
+// A pass's depth test (GL_DEPTH_TEST enabled): compare function and glDepthMask.
+struct DepthTest {
+    DepthFunc func = DepthFunc::Less;
+    bool write = true;
+    bool operator==(const DepthTest&) const = default;
+};
+
 // Geometry -----------------------------------------------------------------------------------
 
 constexpr int kMaxUnits = 2;  // textures sampled per pass (the papers' two-texture hardware)
@@ -103,10 +136,12 @@ struct Vertex {
 // A draw call: triangles (index triples, or consecutive vertex triples when indices is empty),
 // fragment colour = texture(unit0) * texture(unit1) * colour, units that are absent dropped
 // (GLSL: o_col = texture(u0, c0) * texture(u1, c1) * v_col, evaluated left to right).
+// A depth test applies when the frame has a depth buffer (without one GL passes every fragment).
 struct Pass {
     int numUnits = 1;                          // 0, 1 or 2
     std::array<int, kMaxUnits> texture{0, 0};  // index into Frame::textures per unit
     BlendState blend;
+    std::optional<DepthTest> depthTest;  // absent: GL_DEPTH_TEST disabled (no test, no writes)
     std::vector<Vertex> vertices;
     std::vector<uint32_t> indices;
     int NumTriangles() const {
@@ -115,14 +150,15 @@ struct Pass {
     bool operator==(const Pass&) const = default;
 };
 
-// One frame: a cleared RGBA8 framebuffer and passes drawn in order, no depth test, no culling,
-// viewport (0, 0, width, height), depth range [0, 1], clip volume -w <= x, y, z <= w (z not
-// clipped with depthClamp).
+// One frame: a cleared RGBA8 framebuffer (and depth buffer, if any) and passes drawn in order,
+// no culling, viewport (0, 0, width, height), depth range [0, 1], clip volume
+// -w <= x, y, z <= w (z not clipped with depthClamp).
 struct Frame {
     int width = 1, height = 1;
     std::array<uint8_t, 4> clear{0, 0, 0, 0};
     bool depthClamp = false;
-    std::vector<Texture> textures;  // cube maps and 2D textures, referenced by Pass::texture
+    std::optional<DepthBuffer> depth;  // absent: no depth buffer (depth tests pass everything)
+    std::vector<Texture> textures;     // cube maps and 2D textures, referenced by Pass::texture
     std::vector<Pass> passes;
     bool operator==(const Frame&) const = default;
 };

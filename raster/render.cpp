@@ -1,9 +1,10 @@
 // SPDX-License-Identifier: MIT
 // render.cpp — the frame loop: vertex processing (once per referenced vertex), triangle setup in
 // batches (contiguous chunks per thread), the quad loop over row bands (one band set per
-// thread), shading (texture units times colour), conversion and blending. Batches keep the setups
-// small; a pass shared by several frames (RenderFrames) is set up once per batch and drawn into
-// each. The same loop either writes pixels or collects the rows of the rendering matrix.
+// thread), the depth test, shading (texture units times colour), conversion and blending. Batches
+// keep the setups small; a pass shared by several frames (RenderFrames) is set up once per batch
+// and drawn into each. The same loop either writes pixels or collects the rows of the rendering
+// matrix.
 #include "raster/render.h"
 
 #include <algorithm>
@@ -18,6 +19,7 @@
 #include "base/worker_pool.h"
 #include "raster/blend.h"
 #include "raster/clip.h"
+#include "raster/depth.h"
 #include "raster/float_mode.h"
 #include "raster/fragment.h"
 #include "raster/numeric.h"
@@ -258,6 +260,14 @@ void DrawFrame(const FragmentTarget& tg) {
     DrawFrames({tg});
 }
 
+// The frame's depth buffer cleared into *buffer (nullptr, buffer left empty, without one).
+std::vector<uint32_t>* ClearedDepth(const Frame& frame, std::vector<uint32_t>* buffer) {
+    if (!frame.depth) return nullptr;
+    buffer->assign(static_cast<size_t>(frame.width) * static_cast<size_t>(frame.height),
+                   DepthClearValue(frame.depth->format, frame.depth->clear));
+    return buffer;
+}
+
 // The float of each byte (c / 255, or llvmpipe's c * fl(1/255)), through a table of the 256.
 std::vector<float> ToFloat(const std::vector<uint8_t>& bytes, bool exact) {
     std::array<float, 256> table;
@@ -314,7 +324,8 @@ std::vector<RenderResult> RenderFrames(const std::vector<const PreparedFrame*>& 
             for (size_t i = 0; i < 4 * n; ++i)
                 r.imageF.rgba[i] = static_cast<float>(r.image8.rgba[i]) / 255.0f;
         }
-        targets.push_back({frames[f], options, &r.image8, &r.imageF, nullptr, nullptr});
+        targets.push_back({frames[f], options, &r.image8, &r.imageF, nullptr, nullptr,
+                           ClearedDepth(frame, &r.depth)});
     }
     if (!targets.empty()) DrawFrames(targets);
     if (options.profile == Profile::Linear)
@@ -342,7 +353,8 @@ RenderingMatrix BuildRenderingMatrix(const PreparedFrame& prepared, const Render
     for (size_t i = 0; i < n; ++i)
         for (int c = 0; c < 4; ++c) m.offset[4 * i + c] = frame.clear[c] / 255.0;
     std::vector<std::vector<std::pair<uint32_t, double>>> rows(4 * n);
-    DrawFrame({&prepared, options, nullptr, nullptr, &m, &rows});
+    std::vector<uint32_t> depth;
+    DrawFrame({&prepared, options, nullptr, nullptr, &m, &rows, ClearedDepth(frame, &depth)});
 
     // Merge duplicate columns per row (sorted), then CSR.
     m.rowPtr.push_back(0);

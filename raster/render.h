@@ -12,8 +12,10 @@
 //  - Linear: the same rasterization, texel selection and weights, but no intermediate rounding:
 //    float texels c/255, float filtering, float framebuffer and float blending; the result is
 //    exactly linear in the texels (ImageF), and Image8 is its RNE conversion.
-// Threads split the frame into bands of whole 2x2-quad rows; each pixel is written by one
-// thread in primitive order, so the bytes do not depend on the thread count.
+// Depth (Frame::depth, Pass::depthTest): both profiles decide visibility with llvmpipe's depth
+// arithmetic (depth.h); a fragment that fails writes nothing and has no row entries in A.
+// Threads split the frame into bands of whole 2x2-quad rows; each pixel (colour and depth) is
+// written by one thread in primitive order, so the bytes do not depend on the thread count.
 #pragma once
 
 #include <cstdint>
@@ -69,6 +71,9 @@ class PreparedFrame {
 struct RenderResult {
     Image8 image8;  // always
     ImageF imageF;  // Linear profile: the float framebuffer (values may exceed [0, 1])
+    // Frame::depth set: the depth buffer after the last pass, width * height values, rows
+    // top-down (depth.h: Z16/Z24 unorm integers, Z32F float bits); else empty.
+    std::vector<uint32_t> depth;
 };
 
 RenderResult Render(const PreparedFrame& frame, const RenderOptions& options);
@@ -83,9 +88,10 @@ std::vector<RenderResult> RenderFrames(const std::vector<const PreparedFrame*>& 
 // rows and columns): rendered = A * x + offset, x = texel bytes / 255 over all textures, rows per
 // (pixel, channel). A pass contributes the taps of its unit 0; unit 1 and the vertex colour are
 // folded into the weights. Passes must blend with "none" (the pass replaces the row) or "add"
-// (it adds to it); anything else throws std::invalid_argument.
+// (it adds to it); anything else throws std::invalid_argument. Depth tests are allowed: they
+// only choose which fragments count (fragments hidden by the depth buffer have no entries).
 // In the Linear profile `rendered` equals A * x + offset to float rounding; in the Llvmpipe
-// profile it is the 8-bit frame / 255, within the bound of docs/raster-model.md §8.
+// profile it is the 8-bit frame / 255, within the bound of docs/raster-model.md §9.
 struct RenderingMatrix {
     int64_t rows = 0, cols = 0;
     std::vector<int64_t> rowPtr;  // CSR, rows + 1 entries

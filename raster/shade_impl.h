@@ -1,14 +1,16 @@
 // SPDX-License-Identifier: MIT
-// shade_impl.h — the fragment stage's loop (fragment.h): 4x2 lane groups of a triangle, per-lane
-// interpolation (1/w interpolated, one division, attributes times it), texture units, the
-// fragment colour texture(u0) * texture(u1) * colour, unorm8 conversion and 8-bit blending (or
-// the Linear profile's float blending, or the rows of the rendering matrix).
+// shade_impl.h — the fragment stage's loop (fragment.h): 4x2 lane groups of a triangle, the
+// early depth test (depth.h), per-lane interpolation (1/w interpolated, one division,
+// attributes times it), texture units, the fragment colour texture(u0) * texture(u1) * colour,
+// unorm8 conversion and 8-bit blending (or the Linear profile's float blending, or the rows of
+// the rendering matrix).
 #pragma once
 
 #include <array>
 #include <vector>
 
 #include "raster/blend.h"
+#include "raster/depth.h"
 #include "raster/fragment.h"
 #include "raster/numeric.h"
 #include "raster/sampler_impl.h"
@@ -39,6 +41,39 @@ void InterpolateLanes(const TriangleSetup& t, int gx, int gy, LaneAttribs* q) {
     }
     for (int k = 0; k < t.numAttribs; ++k)
         for (int l = 0; l < kLanes; ++l) q->a[k][l] = EvalPlane(t.attr[k], x[l], y[l]) * oow[l];
+}
+
+// Fragment depth of the eight lanes of a 4x2 group (computed once, shared by every draw).
+struct LaneDepth {
+    bool ready = false;
+    alignas(32) float z[kLanes];
+};
+
+// The lanes of `mask` whose fragments pass `test` against the target's depth buffer, their
+// values stored when the test writes. llvmpipe tests before shading (early depth: the shader
+// neither discards nor writes depth) and skips a lane group none of whose lanes passes; failed
+// lanes still carry coordinates for the others' derivatives, as uncovered lanes do.
+unsigned DepthTestLanes(const FragmentTarget& tg, const DepthTest& test, const Plane& zPlane,
+                        int gx, int gy, unsigned mask, LaneDepth* depth) {
+    if (!depth->ready) {
+        for (int l = 0; l < kLanes; ++l)
+            depth->z[l] = FragmentDepth(zPlane, static_cast<float>(gx + kLaneDx[l]),
+                                        static_cast<float>(gy + kLaneDy[l]));
+        depth->ready = true;
+    }
+    const Frame& frame = tg.frame->frame();
+    const DepthFormat format = frame.depth->format;
+    unsigned passed = 0;
+    for (int l = 0; l < kLanes; ++l) {
+        if (!(mask & (1u << l))) continue;
+        const int x = gx + kLaneDx[l], y = gy + kLaneDy[l];
+        uint32_t& stored = (*tg.depth)[static_cast<size_t>(frame.height - 1 - y) * frame.width + x];
+        const uint32_t value = DepthFromFloat(format, depth->z[l]);
+        if (!DepthPasses(test.func, format, value, stored)) continue;
+        if (test.write) stored = value;
+        passed |= 1u << l;
+    }
+    return passed;
 }
 
 uint8_t ToUnorm(float v, UnormRounding r) {
@@ -124,10 +159,37 @@ void ShadeGroup(const FragmentTarget& tg, const Pass& pass, const LaneAttribs& q
     }
 }
 
+// Draws the covered lanes `mask` of lane group (gx, gy) of triangle i into every draw: each
+// draw's depth test (fragment depth computed once), then interpolation (once per variant, only
+// if some draw has lanes left) and shading. `qa`, `footprints`: the caller's scratch.
+void DrawGroup(const std::vector<std::vector<PassDraw>>& variants, const SetupChunk& triangles,
+               size_t i, int gx, int gy, unsigned mask, LaneAttribs* qa,
+               std::array<FastFootprints, kMaxUnits>* footprints) {
+    LaneDepth depth;
+    for (size_t k = 0; k < variants.size(); ++k) {
+        bool interpolated = false;
+        for (const PassDraw& d : variants[k]) {
+            unsigned live = mask;
+            if (d.first->depth && d.second->depthTest) {
+                live = DepthTestLanes(*d.first, *d.second->depthTest, triangles[0][i].z, gx, gy,
+                                      mask, &depth);
+                if (!live) continue;
+            }
+            if (!interpolated) {
+                InterpolateLanes(triangles[k][i], gx, gy, qa);
+                for (FastFootprints& f : *footprints) f.shape = nullptr;  // new coordinates
+                interpolated = true;
+            }
+            ShadeGroup(*d.first, *d.second, *qa, gx, gy, live, footprints);
+        }
+    }
+}
+
 // Draws the 4x2 lane groups of triangle i that lie in the bands owned by `worker`, into every
-// draw of every variant (variants[k] draws triangles[k][i]: the same coverage, its own
-// attributes; each draw samples its own textures and writes its own target). A group is shaded
-// when at least one of its pixels is covered (llvmpipe skips empty 8-lane vectors).
+// draw of every variant (variants[k] draws triangles[k][i]: the same coverage and depth, its own
+// attributes; each draw tests its own depth buffer, samples its own textures and writes its own
+// target). A group is shaded when at least one of its pixels is covered and passes the draw's
+// depth test (llvmpipe skips empty 8-lane vectors).
 // `footprints`: the caller's scratch (reset per lane group and variant).
 void DrawTriangle(const std::vector<std::vector<PassDraw>>& variants, const SetupChunk& triangles,
                   size_t i, int worker, int workers,
@@ -165,13 +227,7 @@ void DrawTriangle(const std::vector<std::vector<PassDraw>>& variants, const Setu
                 for (int l = 0; l < kLanes; ++l)
                     mask &= ~(static_cast<unsigned>(base + laneOffset[e][l] <= 0) << l);
             }
-            if (!mask) continue;
-            for (size_t k = 0; k < variants.size(); ++k) {
-                InterpolateLanes(triangles[k][i], gx, gy, &qa);
-                for (FastFootprints& f : *footprints) f.shape = nullptr;  // new coordinates
-                for (const PassDraw& d : variants[k])
-                    ShadeGroup(*d.first, *d.second, qa, gx, gy, mask, footprints);
-            }
+            if (mask) DrawGroup(variants, triangles, i, gx, gy, mask, &qa, footprints);
         }
     }
 }

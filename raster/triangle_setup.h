@@ -41,7 +41,7 @@ struct TriangleSetup {
     std::array<Edge, 3> edge;
     int x0, x1, y0, y1;  // pixel bounding box, inclusive, clipped to the framebuffer
     Plane oow;           // interpolated 1/w (llvmpipe's position.w channel)
-    Plane z;             // window z (unused for colour, kept for depth clamp checks)
+    Plane z;             // window z: the fragment depth (depth.h FragmentDepth)
     std::array<Plane, kMaxAttribs> attr;  // premultiplied by 1/w (perspective-correct)
     int numAttribs = 0;
     bool swapped = false;  // clockwise: set up as (v1, v0, v2)

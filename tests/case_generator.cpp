@@ -13,6 +13,10 @@ namespace {
 using raster::BlendEquation;
 using raster::BlendFactor;
 using raster::BlendState;
+using raster::DepthBuffer;
+using raster::DepthFormat;
+using raster::DepthFunc;
+using raster::DepthTest;
 using raster::Filter;
 using raster::Frame;
 using raster::MipFilter;
@@ -569,6 +573,313 @@ void OddSizes(std::vector<NamedCase>* out) {
     }
 }
 
+// Depth -------------------------------------------------------------------------------------------
+
+constexpr DepthFormat kDepthFormats[3] = {DepthFormat::Z16, DepthFormat::Z24, DepthFormat::Z32F};
+
+const char* DepthFormatName(DepthFormat f) {
+    static const char* names[3] = {"z16", "z24", "z32f"};
+    return names[static_cast<int>(f)];
+}
+
+const char* DepthFuncName(DepthFunc f) {
+    static const char* names[8] = {"never",   "less",     "equal",  "lequal",
+                                   "greater", "notequal", "gequal", "always"};
+    return names[static_cast<int>(f)];
+}
+
+Frame DepthFrame(int w, int h, DepthFormat format, float clear) {
+    Frame f = NewFrame(w, h, {20, 30, 40, 255});
+    f.depth = DepthBuffer{format, clear};
+    return f;
+}
+
+Pass DepthPass(DepthFunc func, bool write, const BlendState& blend = BlendState::None()) {
+    Pass p;
+    p.depthTest = DepthTest{func, write};
+    p.blend = blend;
+    return p;
+}
+
+glm::vec4 RandomColour(Rng* rng) {
+    return {rng->Uniform(0.1f, 1), rng->Uniform(0.1f, 1), rng->Uniform(0.1f, 1),
+            rng->Uniform(0.3f, 1)};
+}
+
+glm::vec3 RandomDirection(Rng* rng) {
+    return {rng->Uniform(-1, 1), rng->Uniform(-1, 1), rng->Uniform(-1, 1)};
+}
+
+// n random triangles, every vertex with its own clip z in [zLo, zHi] * w (so overlapping
+// triangles interpenetrate) and w in [wLo, wHi].
+void AddDepthTriangles(Pass* p, Rng* rng, int n, float zLo, float zHi, float wLo = 1.0f,
+                       float wHi = 1.0f) {
+    for (int t = 0; t < 3 * n; ++t) {
+        const float w = rng->Uniform(wLo, wHi);
+        const glm::vec4 pos(rng->Uniform(-1.2f, 1.2f) * w, rng->Uniform(-1.2f, 1.2f) * w,
+                            rng->Uniform(zLo, zHi) * w, w);
+        p->vertices.push_back(V(pos, RandomDirection(rng), RandomColour(rng)));
+    }
+}
+
+// A quad over the clip rectangle [x0,x1]x[y0,y1] at w = 1 whose window depth runs linearly
+// from zLeft (x0) to zRight (x1) and from zBottom to zTop: window z = zw, clip z = 2 zw - 1.
+void AddDepthQuad(Pass* p, float x0, float y0, float x1, float y1, float zLeft, float zRight,
+                  float zBottom, float zTop, const glm::vec4& col) {
+    const float zw[4] = {zLeft + zBottom, zRight + zBottom, zRight + zTop, zLeft + zTop};
+    const glm::vec2 xy[4] = {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
+    for (int k : {0, 1, 2, 0, 2, 3}) {
+        const glm::vec4 pos(xy[k].x, xy[k].y, 2.0f * zw[k] - 1.0f, 1.0f);
+        p->vertices.push_back(V(pos, glm::vec3(xy[k], 1.0f), col));
+    }
+}
+
+// Every compare function on every format: a buffer built by random interpenetrating triangles
+// (LESS, writes), then half of them drawn again at the same positions (exact ties) and new ones
+// with the function under test, writes on for every other function.
+void DepthFunctions(std::vector<NamedCase>* out) {
+    for (DepthFormat format : kDepthFormats)
+        for (int fi = 0; fi < 8; ++fi) {
+            const auto func = static_cast<DepthFunc>(fi);
+            Rng rng{8000 + static_cast<uint64_t>(fi) + 16 * static_cast<uint64_t>(format)};
+            Frame f = DepthFrame(64, 48, format, 0.5f);
+            f.textures.push_back(
+                Cube(16, Sampler(Filter::Linear, MipFilter::Linear, Filter::Linear), 81));
+            f.textures.push_back(
+                Cube(8, Sampler(Filter::Linear, MipFilter::None, Filter::Linear), 82));
+            Pass base = DepthPass(DepthFunc::Less, true);
+            AddDepthTriangles(&base, &rng, 10, -1.0f, 1.0f);
+            Pass test =
+                DepthPass(func, fi % 2 == 1, fi % 4 < 2 ? BlendState::None() : BlendState::Over());
+            test.texture[0] = 1;
+            for (size_t v = 0; v < base.vertices.size() / 2; ++v) {
+                Vertex again = base.vertices[v];
+                again.color = RandomColour(&rng);
+                test.vertices.push_back(again);
+            }
+            test.vertices.resize(test.vertices.size() / 3 * 3);
+            AddDepthTriangles(&test, &rng, 6, -1.0f, 1.0f);
+            f.passes = {base, test};
+            out->push_back(
+                {std::string("depth_") + DepthFuncName(func) + "_" + DepthFormatName(format), f});
+        }
+}
+
+// Clear values 0, 1, 0.3 and 1/3: quads whose depth crosses the clear value, coarsely (a
+// visible boundary) and finely (a few buffer units across the frame: the conversion's rounding
+// of the fragment and of the clear value decide each pixel).
+void DepthClears(std::vector<NamedCase>* out) {
+    const float clears[4] = {0.0f, 1.0f, 0.3f, 1.0f / 3.0f};
+    const char* names[4] = {"0", "1", "0_3", "third"};
+    for (DepthFormat format : kDepthFormats)
+        for (int k = 0; k < 4; ++k) {
+            const float c = clears[k];
+            const float unit = format == DepthFormat::Z16   ? 1.0f / 65535.0f
+                               : format == DepthFormat::Z24 ? 1.0f / 16777215.0f
+                                                            : 6e-8f;
+            Frame f = DepthFrame(64, 32, format, c);
+            const DepthFunc first = k == 0 ? DepthFunc::Greater : DepthFunc::Less;
+            Pass coarse = DepthPass(first, false);
+            coarse.numUnits = 0;
+            AddDepthQuad(&coarse, -1, 0, 1, 1, c - 0.05f, c + 0.05f, 0, 0, {1, 0.2f, 0.2f, 1});
+            Pass fine = DepthPass(k == 1 ? DepthFunc::LEqual : DepthFunc::GEqual, false);
+            fine.numUnits = 0;
+            AddDepthQuad(&fine, -1, -1, 1, 0, c - 3 * unit, c + 3 * unit, -unit, unit,
+                         {0.2f, 1, 0.4f, 1});
+            Pass equal = DepthPass(DepthFunc::Equal, false, BlendState::Additive());
+            equal.numUnits = 0;
+            AddDepthQuad(&equal, -1, -1, 1, 1, c - 4 * unit, c + 4 * unit, -2 * unit, 2 * unit,
+                         {0.1f, 0.1f, 0.9f, 1});
+            f.passes = {coarse, fine, equal};
+            out->push_back(
+                {std::string("depth_clear_") + names[k] + "_" + DepthFormatName(format), f});
+        }
+    // A subnormal Z32F clear value compares as 0 (DAZ): fragments clamped to exactly 0 fail
+    // LESS and pass LEQUAL.
+    Frame f = DepthFrame(48, 32, DepthFormat::Z32F, 1e-40f);
+    f.depthClamp = true;
+    Pass less = DepthPass(DepthFunc::Less, false);
+    less.numUnits = 0;
+    AddDepthQuad(&less, -1, 0, 1, 1, -0.5f, 0.5f, 0, 0, {1, 0.2f, 0.2f, 1});
+    Pass lequal = DepthPass(DepthFunc::LEqual, false);
+    lequal.numUnits = 0;
+    AddDepthQuad(&lequal, -1, -1, 1, 0, -0.5f, 0.5f, 0, 0, {0.2f, 1, 0.2f, 1});
+    f.passes = {less, lequal};
+    out->push_back({"depth_clear_subnormal_z32f", f});
+}
+
+// The multipass pattern: a sphere writes depth, an occluder in front of part of it too, then
+// the same sphere geometry is drawn again with EQUAL (and LEQUAL) without writes, with other
+// textures and blending. The sphere is cut by the near plane and the frame edge.
+void DepthMultipass(std::vector<NamedCase>* out) {
+    for (DepthFormat format : kDepthFormats)
+        for (bool clamp : {false, true}) {
+            Frame f = DepthFrame(96, 72, format, 1.0f);
+            f.depthClamp = clamp;
+            f.textures.push_back(
+                Cube(32, Sampler(Filter::Linear, MipFilter::Linear, Filter::Linear), 91));
+            f.textures.push_back(
+                Cube(16, Sampler(Filter::Nearest, MipFilter::Nearest, Filter::Linear), 92));
+            SamplerState tile = Sampler(Filter::Linear, MipFilter::Linear, Filter::Linear);
+            tile.wrapS = tile.wrapT = Wrap::Repeat;
+            f.textures.push_back(MakeTexture(TextureKind::Tex2D, 16, 16, tile, 93));
+            Pass sphere = DepthPass(DepthFunc::Less, true);
+            AddSphere(&sphere, 20, 28, 96.0f / 72.0f, {0.1f, 0.05f, 1.05f}, {0.1f, 0, 0}, 1.0f,
+                      1.0f);
+            Pass occluder = DepthPass(DepthFunc::Less, true);
+            occluder.texture[0] = 2;
+            const glm::vec3 c[4] = {{0, 0, 0}, {3, 0, 0}, {3, 3, 0}, {0, 3, 0}};
+            const glm::vec4 pos[4] = {{-0.9f, -0.8f, -0.2f, 1},
+                                      {0.2f, -0.8f, 0.3f, 1},
+                                      {0.2f, 0.1f, 0.3f, 1},
+                                      {-0.9f, 0.1f, -0.2f, 1}};
+            for (int k : {0, 1, 2, 0, 2, 3}) occluder.vertices.push_back(V(pos[k], c[k]));
+            Pass equal = sphere;
+            equal.depthTest = DepthTest{DepthFunc::Equal, false};
+            equal.texture[0] = 1;
+            equal.blend = BlendState::Additive();
+            Pass lequal = sphere;
+            lequal.depthTest = DepthTest{DepthFunc::LEqual, false};
+            lequal.numUnits = 2;
+            lequal.texture = {0, 2};
+            for (Vertex& v : lequal.vertices) v.coord[1] = glm::vec3(v.coord[0].x, v.coord[0].y, 0);
+            lequal.blend = BlendState::Multiply();
+            f.passes = {sphere, occluder, equal, lequal};
+            out->push_back({std::string("depth_multipass_") + DepthFormatName(format) +
+                                (clamp ? "_clamp" : ""),
+                            f});
+        }
+}
+
+// Geometry crossing the near and far planes, with and without GL_DEPTH_CLAMP (clamped fragments
+// sit at exactly 0 or 1), tested with LESS, then GEQUAL and GREATER against the clear value.
+void DepthClamp(std::vector<NamedCase>* out) {
+    for (DepthFormat format : kDepthFormats)
+        for (bool clamp : {false, true}) {
+            Rng rng{8500 + static_cast<uint64_t>(format) * 2 + (clamp ? 1 : 0)};
+            Frame f = DepthFrame(72, 56, format, 1.0f);
+            f.depthClamp = clamp;
+            f.textures.push_back(
+                Cube(16, Sampler(Filter::Linear, MipFilter::Linear, Filter::Linear), 95));
+            Pass p = DepthPass(DepthFunc::Less, true);
+            AddDepthTriangles(&p, &rng, 12, -3.0f, 3.0f, 0.5f, 2.0f);
+            Pass q = DepthPass(DepthFunc::GEqual, false, BlendState::Additive());
+            AddDepthTriangles(&q, &rng, 8, -3.0f, 3.0f, 0.5f, 2.0f);
+            Pass r = DepthPass(DepthFunc::Greater, true, BlendState::Over());
+            AddDepthTriangles(&r, &rng, 8, -1.5f, 1.5f);
+            f.passes = {p, q, r};
+            out->push_back({std::string("depth_near_far_") + DepthFormatName(format) +
+                                (clamp ? "_clamp" : "_clip"),
+                            f});
+        }
+}
+
+// Steep depth slopes (triangles almost edge-on: z from 0 to 1 within a few pixels) crossing
+// shallow ones, and long slivers.
+void DepthSteep(std::vector<NamedCase>* out) {
+    for (DepthFormat format : kDepthFormats) {
+        Rng rng{8600 + static_cast<uint64_t>(format)};
+        Frame f = DepthFrame(64, 64, format, 1.0f);
+        Pass p = DepthPass(DepthFunc::Less, true);
+        p.numUnits = 0;
+        for (int t = 0; t < 12; ++t) {
+            const float x = rng.Uniform(-0.9f, 0.9f), y = rng.Uniform(-0.9f, 0.9f);
+            const float dx = rng.Uniform(0.03f, 0.25f), len = rng.Uniform(0.5f, 1.5f);
+            const glm::vec4 col = RandomColour(&rng);
+            const bool vertical = t % 2 == 0;
+            const glm::vec4 a =
+                vertical ? glm::vec4(x, y - len, -1, 1) : glm::vec4(x - len, y, -1, 1);
+            const glm::vec4 b =
+                vertical ? glm::vec4(x + dx, y - len, 1, 1) : glm::vec4(x - len, y + dx, 1, 1);
+            const glm::vec4 c = vertical ? glm::vec4(x, y + len, rng.Uniform(-1, 1), 1)
+                                         : glm::vec4(x + len, y, rng.Uniform(-1, 1), 1);
+            for (const glm::vec4& pos : {a, b, c}) p.vertices.push_back(V(pos, {}, col));
+        }
+        Pass shallow = DepthPass(DepthFunc::LEqual, true, BlendState::Over());
+        shallow.numUnits = 0;
+        AddDepthQuad(&shallow, -1, -1, 1, 1, 0.2f, 0.8f, 0.1f, -0.1f, {0.9f, 0.9f, 0.2f, 0.7f});
+        f.passes = {p, shallow};
+        out->push_back({std::string("depth_steep_") + DepthFormatName(format), f});
+    }
+}
+
+// Tiny and huge w: perspective-divided depth with w from 1e-3 and up to 1e6.
+void DepthExtremeW(std::vector<NamedCase>* out) {
+    for (DepthFormat format : kDepthFormats)
+        for (bool huge : {false, true}) {
+            Rng rng{8700 + static_cast<uint64_t>(format) * 2 + (huge ? 1 : 0)};
+            Frame f = DepthFrame(64, 48, format, 1.0f);
+            f.textures.push_back(
+                Cube(16, Sampler(Filter::Linear, MipFilter::Linear, Filter::Linear), 97));
+            Pass p = DepthPass(DepthFunc::Less, true);
+            AddDepthTriangles(&p, &rng, 12, -1.0f, 1.0f, huge ? 1e4f : 1e-3f, huge ? 1e6f : 1e-2f);
+            Pass q = DepthPass(DepthFunc::LEqual, false, BlendState::Additive());
+            for (size_t v = 0; v < p.vertices.size(); ++v) {
+                Vertex again = p.vertices[(v + 3) % p.vertices.size()];
+                again.color = RandomColour(&rng);
+                q.vertices.push_back(again);
+            }
+            f.passes = {p, q};
+            out->push_back(
+                {std::string("depth_w_") + (huge ? "huge_" : "tiny_") + DepthFormatName(format),
+                 f});
+        }
+}
+
+// Writes on and off and passes without a depth test (which neither test nor write), over
+// interpenetrating triangles; a final pass tests GREATER against what is left.
+void DepthWrites(std::vector<NamedCase>* out) {
+    for (DepthFormat format : kDepthFormats) {
+        Rng rng{8800 + static_cast<uint64_t>(format)};
+        Frame f = DepthFrame(64, 64, format, 0.75f);
+        f.textures.push_back(
+            Cube(16, Sampler(Filter::Linear, MipFilter::Linear, Filter::Linear), 98));
+        Pass noWrite = DepthPass(DepthFunc::Less, false);
+        AddDepthTriangles(&noWrite, &rng, 8, -1.0f, 1.0f);
+        Pass untested;
+        AddDepthTriangles(&untested, &rng, 4, -1.0f, 1.0f);
+        Pass write = DepthPass(DepthFunc::Less, true);
+        AddDepthTriangles(&write, &rng, 10, -1.0f, 1.0f);
+        Pass greater = DepthPass(DepthFunc::Greater, false, BlendState::Additive());
+        AddDepthTriangles(&greater, &rng, 8, -1.0f, 1.0f);
+        f.passes = {noWrite, untested, write, greater};
+        out->push_back({std::string("depth_writes_") + DepthFormatName(format), f});
+    }
+}
+
+// Two intersecting spheres and crossing planes (pixel-exact intersection curves), in an odd
+// framebuffer size; every format.
+void DepthIntersections(std::vector<NamedCase>* out) {
+    for (DepthFormat format : kDepthFormats) {
+        Frame f = DepthFrame(61, 37, format, 1.0f);
+        f.textures.push_back(
+            Cube(32, Sampler(Filter::Linear, MipFilter::Linear, Filter::Linear), 99));
+        Pass a = DepthPass(DepthFunc::Less, true);
+        AddSphere(&a, 14, 18, 61.0f / 37.0f, {0.0f, 0.3f, 3.0f}, {-0.35f, 0, 0}, 0.8f, 1.0f);
+        Pass b = DepthPass(DepthFunc::Less, true);
+        AddSphere(&b, 12, 16, 61.0f / 37.0f, {0.0f, 0.3f, 3.0f}, {0.4f, 0.1f, 0.2f}, 0.7f, -1.0f);
+        Pass planes = DepthPass(DepthFunc::LEqual, true, BlendState::Over());
+        planes.numUnits = 0;
+        // Window depths of the spheres: about 0.955..0.97 (near 0.1, far 100, distance 2.2..3.8).
+        AddDepthQuad(&planes, -1, -1, 1, 1, 0.955f, 0.966f, 0, 0, {0.9f, 0.3f, 0.3f, 0.6f});
+        AddDepthQuad(&planes, -1, -1, 1, 1, 0.966f, 0.955f, -0.002f, 0.002f,
+                     {0.3f, 0.9f, 0.3f, 0.6f});
+        f.passes = {a, b, planes};
+        out->push_back({std::string("depth_intersect_") + DepthFormatName(format), f});
+    }
+}
+
+void Depth(std::vector<NamedCase>* out) {
+    DepthFunctions(out);
+    DepthClears(out);
+    DepthMultipass(out);
+    DepthClamp(out);
+    DepthSteep(out);
+    DepthExtremeW(out);
+    DepthWrites(out);
+    DepthIntersections(out);
+}
+
 }  // namespace
 
 std::vector<NamedCase> ConformanceCases() {
@@ -586,6 +897,7 @@ std::vector<NamedCase> ConformanceCases() {
     Clipping(&out);
     TwoUnits(&out);
     OddSizes(&out);
+    Depth(&out);
     return out;
 }
 

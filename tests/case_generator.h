@@ -2,7 +2,9 @@
 // case_generator.h — the raster conformance corpus: deterministic frames that exercise every
 // rule of the llvmpipe model (reflective spheres, cube edges and corners, minification and
 // magnification, every filter and wrap mode, LOD bias and clamps, multi-pass blending, blend
-// and conversion probes, tie directions, extreme magnitudes, clipping, two-texture passes).
+// and conversion probes, tie directions, extreme magnitudes, clipping, two-texture passes, and
+// depth buffers: every format and compare function, clears, writes, EQUAL multipass, near/far
+// with and without depth clamp, steep slopes, extreme w).
 // Each case is small (<= 128x128) so the whole corpus renders through llvmpipe in seconds.
 #pragma once
 

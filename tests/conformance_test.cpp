@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // conformance_test.cpp — every generated case (case_generator.h) rendered by pemref's llvmpipe
-// profile must be byte-identical to Mesa llvmpipe rendering the same case file through EGL.
+// profile must be byte-identical to Mesa llvmpipe rendering the same case file through EGL, and
+// so must the depth buffer of a case that has one (read back with glReadPixels).
 // The case goes through its JSON form first (CaseToJson -> ParseCaseJson), so both renderers
 // see exactly what a case file carries. On a mismatch the case, both frames and a difference
 // mask are written to build/test_output/conformance/.
@@ -42,6 +43,18 @@ void WriteFailure(const std::string& name, const std::string& json, const raster
     base::WritePng((dir / (name + "_diff.png")).string(), diff);
 }
 
+// The depth buffers (depth.h values, rows top-down) must be equal too.
+void ExpectSameDepth(const std::string& name, const raster::Frame& frame,
+                     const std::vector<uint32_t>& ours, const std::vector<uint32_t>& gl) {
+    ASSERT_EQ(ours.size(), gl.size()) << name;
+    size_t differ = 0, first = 0;
+    for (size_t i = 0; i < ours.size(); ++i)
+        if (ours[i] != gl[i] && differ++ == 0) first = i;
+    EXPECT_EQ(differ, 0u) << name << ": " << differ << " depth values differ, first at x "
+                          << first % size_t(frame.width) << ", row " << first / size_t(frame.width)
+                          << " (pemref " << ours[first] << ", llvmpipe " << gl[first] << ")";
+}
+
 TEST_P(Conformance, BitIdenticalToLlvmpipe) {
     // The reference must be llvmpipe, also on machines with a GPU.
     setenv("LIBGL_ALWAYS_SOFTWARE", "1", 1);
@@ -54,9 +67,12 @@ TEST_P(Conformance, BitIdenticalToLlvmpipe) {
     const std::string json = conformance::CaseToJson(c.frame);
     const raster::Frame frame = conformance::ParseCaseJson(json, c.name);
     const raster::PreparedFrame prepared(frame);
-    const raster::Image8 ours = raster::Render(prepared, {}).image8;
-    const raster::Image8 gl = conformance::RenderWithGl(frame, 1, nullptr);
+    const raster::RenderResult result = raster::Render(prepared, {});
+    const raster::Image8& ours = result.image8;
+    std::vector<uint32_t> glDepth;
+    const raster::Image8 gl = conformance::RenderWithGl(frame, 1, nullptr, &glDepth);
     ASSERT_EQ(ours.rgba.size(), gl.rgba.size());
+    ExpectSameDepth(c.name, frame, result.depth, glDepth);
     size_t differ = 0, first = 0;
     int maxDelta = 0;
     for (size_t i = 0; i < ours.rgba.size(); ++i)

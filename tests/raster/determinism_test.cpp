@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
-// determinism_test.cpp — the same bytes for any thread count and for both builds of the fragment
-// stage (baseline and AVX2+FMA, fragment.h), on the conformance corpus and the benchmark frame.
+// determinism_test.cpp — the same bytes (colour and depth buffer) for any thread count and for
+// both builds of the fragment stage (baseline and AVX2+FMA, fragment.h), on the conformance
+// corpus and the benchmark frame.
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -18,10 +19,12 @@ TEST(Determinism, ThreadCountDoesNotChangeBytes) {
     for (const auto& c : cases) {
         const PreparedFrame pf(c.frame);
         RenderOptions opt;
-        const Image8 one = Render(pf, opt).image8;
+        const RenderResult one = Render(pf, opt);
         for (int threads : {2, 3, 8}) {
             opt.threads = threads;
-            ASSERT_EQ(Render(pf, opt).image8, one) << c.name << " threads " << threads;
+            const RenderResult r = Render(pf, opt);
+            ASSERT_EQ(r.image8, one.image8) << c.name << " threads " << threads;
+            ASSERT_EQ(r.depth, one.depth) << c.name << " threads " << threads;
         }
     }
 }
@@ -35,11 +38,12 @@ TEST(Determinism, BaselineAndFmaBuildsAgree) {
     cases.push_back({"bench_small", test::BenchmarkFrame(160, 120, 25, 50, 64)});
     for (const auto& c : cases) {
         const PreparedFrame pf(c.frame);
-        const Image8 fma = Render(pf, {}).image8;
+        const RenderResult fma = Render(pf, {});
         setenv("PEM_ISA", "base", 1);
-        const Image8 base = Render(pf, {}).image8;
+        const RenderResult base = Render(pf, {});
         unsetenv("PEM_ISA");
-        ASSERT_EQ(fma, base) << c.name;
+        ASSERT_EQ(fma.image8, base.image8) << c.name;
+        ASSERT_EQ(fma.depth, base.depth) << c.name;
     }
 }
 

@@ -218,6 +218,32 @@ TEST(BadCase, Units) {
     ExpectError(ErrorOf(j.dump()), "passes[0].cubemap: cube 7 out of range (2 cubemaps)");
 }
 
+TEST(BadCase, Depth) {
+    ExpectError(ErrorWith("/depth", "z24"), "depth: expected an object");
+    ExpectError(ErrorWith("/depth", json{{"clear", 0.5}}), "depth.format: missing key");
+    ExpectError(ErrorWith("/depth", json{{"format", "z8"}}), "depth.format: unknown value \"z8\"");
+    ExpectError(ErrorWith("/depth", json{{"format", "z24"}, {"clear", 1.5}}),
+                "depth.clear: 1.5 outside [0, 1]");
+    ExpectError(ErrorWith("/depth", json{{"format", "z16"}, {"clear", -0.25}}),
+                "depth.clear: -0.25 outside [0, 1]");
+    ExpectError(ErrorWith("/depth", json{{"format", "z32f"}, {"clear", "nan"}}),
+                "depth.clear: NaN");
+    ExpectError(ErrorWith("/depth", json{{"format", "z32f"}, {"clear", true}}),
+                "depth.clear: expected a number");
+    ExpectError(ErrorWith("/passes/0/depth_test", json{{"func", "less"}}),
+                "passes[0].depth_test: the case has no \"depth\" buffer");
+    json j = BaseCase();
+    j["depth"] = {{"format", "z24"}};
+    j["passes"][0]["depth_test"] = {{"func", "lesser"}};
+    ExpectError(ErrorOf(j.dump()), "passes[0].depth_test.func: unknown value \"lesser\"");
+    j["passes"][0]["depth_test"] = {{"write", 1}};
+    ExpectError(ErrorOf(j.dump()), "passes[0].depth_test.write: expected a boolean");
+    j["passes"][0]["depth_test"] = true;
+    ExpectError(ErrorOf(j.dump()), "passes[0].depth_test: expected an object");
+    j["passes"][0]["depth_test"] = json::object();
+    EXPECT_EQ(ErrorOf(j.dump()), "");
+}
+
 TEST(BadCase, MinLodAboveMaxLodIsAllowed) {
     json j = BaseCase();
     j["cubemaps"][0]["min_lod"] = 5;

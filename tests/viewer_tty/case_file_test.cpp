@@ -139,7 +139,8 @@ raster::Pass RandomPass(std::mt19937_64* rng, const Frame& frame, int numCubes) 
     if ((*rng)() % 2)
         for (int k = 0; k < 6; ++k)
             pass.indices.push_back(uint32_t((*rng)() % unsigned(numVertices)));
-    (void)frame;
+    if (frame.depth && (*rng)() % 3 != 0)
+        pass.depthTest = raster::DepthTest{raster::DepthFunc((*rng)() % 8), (*rng)() % 2 == 0};
     return pass;
 }
 
@@ -150,12 +151,38 @@ Frame RandomFrame(uint64_t seed) {
     f.height = 1 + int(rng() % 64);
     for (auto& c : f.clear) c = uint8_t(rng());
     f.depthClamp = rng() % 2;
+    if (rng() % 3 != 0)  // clear: a random float in [0, 1] (odd values included)
+        f.depth = raster::DepthBuffer{raster::DepthFormat(rng() % 3),
+                                      float(rng() >> 40) / float(1 << 24)};
     f.textures.push_back(RandomTexture(&rng, TextureKind::Cube));
     f.textures.push_back(RandomTexture(&rng, TextureKind::Cube));
     f.textures.push_back(RandomTexture(&rng, TextureKind::Tex2D));
     f.textures.push_back(RandomTexture(&rng, TextureKind::Tex2D));
     for (int p = 0; p < 4; ++p) f.passes.push_back(RandomPass(&rng, f, 2));
     return f;
+}
+
+TEST(CaseFile, DepthKeysAndDefaults) {
+    const std::string text = R"({"width": 4, "height": 4,
+      "depth": {"format": "z16"},
+      "passes": [
+        {"units": [], "depth_test": {}, "vertices": [[-1,-1,0,1, 1,1,1,1], [3,-1,0,1, 1,1,1,1],
+                                                      [-1,3,0,1, 1,1,1,1]]},
+        {"units": [], "depth_test": {"func": "gequal", "write": false},
+         "vertices": [[-1,-1,0,1, 1,1,1,1], [3,-1,0,1, 1,1,1,1], [-1,3,0,1, 1,1,1,1]]},
+        {"units": [], "vertices": [[-1,-1,0,1, 1,1,1,1], [3,-1,0,1, 1,1,1,1], [-1,3,0,1, 1,1,1,1]]}]})";
+    const Frame f = ParseCaseJson(text, kPath);
+    ASSERT_TRUE(f.depth.has_value());
+    EXPECT_EQ(f.depth->format, raster::DepthFormat::Z16);
+    EXPECT_EQ(f.depth->clear, 1.0f);
+    EXPECT_EQ(f.passes[0].depthTest, (raster::DepthTest{raster::DepthFunc::Less, true}));
+    EXPECT_EQ(f.passes[1].depthTest, (raster::DepthTest{raster::DepthFunc::GEqual, false}));
+    EXPECT_FALSE(f.passes[2].depthTest.has_value());
+    const Frame g = ParseCaseJson(R"({"width": 1, "height": 1,
+      "depth": {"format": "z32f", "clear": 0.3}, "passes": []})",
+                                  kPath);
+    EXPECT_EQ(g.depth->clear, 0.3f);
+    EXPECT_FALSE(ParseCaseJson(LegacyCase(), kPath).depth.has_value());
 }
 
 TEST(CaseFile, RoundTripRandomFrames) {

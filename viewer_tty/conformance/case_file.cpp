@@ -15,6 +15,7 @@
 #include <fstream>
 #include <limits>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 
 #include "viewer_tty/conformance/case_codec.h"
@@ -263,13 +264,28 @@ raster::BlendState ParseBlend(const json& obj, const std::string& where) {
     Fail(blendWhere, "unknown blend mode \"" + name + "\"");
 }
 
-Pass ParsePass(const json& v, const std::string& where, const TextureTable& table) {
+// The pass's `depth_test` (absent: GL_DEPTH_TEST disabled); it needs the case's depth buffer.
+std::optional<raster::DepthTest> ParseDepthTest(const json& obj, const std::string& where,
+                                                bool haveDepth) {
+    const json* v = Find(obj, "depth_test");
+    if (!v) return std::nullopt;
+    const std::string testWhere = Key(where, "depth_test");
+    const json& test = AsObject(*v, testWhere);
+    if (!haveDepth) Fail(testWhere, "the case has no \"depth\" buffer");
+    raster::DepthTest t;
+    t.func = EnumOr(test, testWhere, "func", kDepthFuncNames, t.func);
+    t.write = BoolOr(test, testWhere, "write", t.write);
+    return t;
+}
+
+Pass ParsePass(const json& v, const std::string& where, const TextureTable& table, bool haveDepth) {
     const json& obj = AsObject(v, where);
     Pass pass;
-    // Step 1: texture units and blending.
+    // Step 1: texture units, blending and the depth test.
     ParseUnits(obj, where, table, &pass);
     CheckSeamless(pass, where, table);
     pass.blend = ParseBlend(obj, where);
+    pass.depthTest = ParseDepthTest(obj, where, haveDepth);
     // Step 2: geometry, then the triangle-list checks.
     pass.vertices = ParseVertices(obj, where, pass.numUnits);
     pass.indices = ParseIndices(obj, where);
@@ -288,6 +304,22 @@ std::array<uint8_t, 4> ParseClear(const json& obj) {
     for (size_t c = 0; c < 4; ++c)
         clear[c] = static_cast<uint8_t>(AsInt(list[c], Index("clear", c), 0, 255));
     return clear;
+}
+
+// The top-level `depth` buffer (absent: none): a required format and a clear value in [0, 1].
+std::optional<raster::DepthBuffer> ParseDepth(const json& root) {
+    const json* v = Find(root, "depth");
+    if (!v) return std::nullopt;
+    const json& obj = AsObject(*v, "depth");
+    raster::DepthBuffer depth;
+    Require(obj, "depth", "format");
+    depth.format = EnumOr(obj, "depth", "format", kDepthFormatNames, depth.format);
+    if (const json* clear = Find(obj, "clear")) {
+        depth.clear = AsFloat(*clear, "depth.clear");
+        if (!(depth.clear >= 0.0f && depth.clear <= 1.0f))
+            Fail("depth.clear", clear->dump() + " outside [0, 1]");
+    }
+    return depth;
 }
 
 // Appends the textures of array `key` (absent = none) of `kind` to frame->textures.
@@ -310,6 +342,7 @@ Frame ParseFrame(const json& root) {
     frame.height = static_cast<int>(AsInt(Require(root, "", "height"), "height", 1, kMaxSize));
     frame.clear = ParseClear(root);
     frame.depthClamp = BoolOr(root, "", "depth_clamp", false);
+    frame.depth = ParseDepth(root);
     // Step 2: textures, cube maps first.
     ParseTextureList(root, "cubemaps", TextureKind::Cube, &frame);
     TextureTable table{static_cast<int>(frame.textures.size()), &frame.textures};
@@ -318,7 +351,8 @@ Frame ParseFrame(const json& root) {
     if (const json* passes = Find(root, "passes")) {
         const json& list = AsArray(*passes, "passes");
         for (size_t i = 0; i < list.size(); ++i)
-            frame.passes.push_back(ParsePass(list[i], Index("passes", i), table));
+            frame.passes.push_back(
+                ParsePass(list[i], Index("passes", i), table, frame.depth.has_value()));
     }
     return frame;
 }

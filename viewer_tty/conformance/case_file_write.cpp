@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // case_file_write.cpp — CaseToJson: a Frame as a gl_ref_case/1 (superset) file.
-// Conventions: every key written explicitly; texels as base64; floats as JSON numbers holding the
+// Conventions: every key written explicitly (`depth` and `depth_test` only when present, their
+// absence being meaningful); texels as base64; floats as JSON numbers holding the
 // float's exact double value, printed as the shortest repr that reads back to that double;
 // arrays of scalars on one line, everything else indented by 2.
 // Not here: reading (case_file.cpp).
@@ -109,6 +110,9 @@ Json PassJson(const raster::Frame& frame, const raster::Pass& pass) {
     for (int u = 0; u < pass.numUnits; ++u)
         j["units"].push_back(UnitJson(frame, pass.texture[size_t(u)]));
     j["blend"] = BlendJson(pass.blend);
+    if (pass.depthTest)
+        j["depth_test"] = {{"func", NameOf(kDepthFuncNames, pass.depthTest->func)},
+                           {"write", pass.depthTest->write}};
     j["vertices"] = Json::array();
     for (const raster::Vertex& v : pass.vertices)
         j["vertices"].push_back(VertexJson(v, pass.numUnits));
@@ -151,6 +155,9 @@ std::string CaseToJson(const raster::Frame& frame) {
     j["height"] = frame.height;
     j["clear"] = frame.clear;
     j["depth_clamp"] = frame.depthClamp;
+    if (frame.depth)
+        j["depth"] = {{"format", NameOf(kDepthFormatNames, frame.depth->format)},
+                      {"clear", Exact(frame.depth->clear)}};
     // Step 2: textures, split by kind (file order = Frame order within each kind).
     j["cubemaps"] = Json::array();
     j["textures2d"] = Json::array();

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // case_names.h — the spelling of every enum value in gl_ref_case/1 files (filters, wraps, blend
-// factors and equations), shared by the case reader and writer so the two cannot drift apart.
+// factors and equations, depth formats and functions), shared by the case reader and writer so
+// the two cannot drift apart.
 // Conventions: lowercase GL names without the GL_ prefix, e.g. "linear_mipmap_nearest".
 // Not here: parsing or error reporting (case_file.cpp).
 #pragma once
@@ -62,6 +63,23 @@ inline constexpr std::array<NameTable<raster::BlendEquation>, 5> kBlendEquationN
     {"reverse_subtract", raster::BlendEquation::ReverseSubtract},
     {"min", raster::BlendEquation::Min},
     {"max", raster::BlendEquation::Max},
+}};
+
+inline constexpr std::array<NameTable<raster::DepthFormat>, 3> kDepthFormatNames = {{
+    {"z16", raster::DepthFormat::Z16},
+    {"z24", raster::DepthFormat::Z24},
+    {"z32f", raster::DepthFormat::Z32F},
+}};
+
+inline constexpr std::array<NameTable<raster::DepthFunc>, 8> kDepthFuncNames = {{
+    {"never", raster::DepthFunc::Never},
+    {"less", raster::DepthFunc::Less},
+    {"equal", raster::DepthFunc::Equal},
+    {"lequal", raster::DepthFunc::LEqual},
+    {"greater", raster::DepthFunc::Greater},
+    {"notequal", raster::DepthFunc::NotEqual},
+    {"gequal", raster::DepthFunc::GEqual},
+    {"always", raster::DepthFunc::Always},
 }};
 
 // The name of `value` in `table` (every enum value is present).

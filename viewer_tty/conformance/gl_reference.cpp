@@ -1,9 +1,10 @@
 // SPDX-License-Identifier: MIT
 // gl_reference.cpp — RenderWithGl: upload textures, build one program per pass shape, draw every
-// pass into an RGBA8 renderbuffer, read back, flip rows to top-down.
+// pass into an RGBA8 renderbuffer (with a depth renderbuffer when the frame has one), read back,
+// flip rows to top-down.
 // Conventions: attribute locations 0 a_pos, 1 a_c0, 2 a_c1, 3 a_col; sampler u<k> on texture
 // unit k; vertex buffers hold the case's interleaved floats (4 + 3*units + 4 per vertex).
-// Not here: context creation (gl_context.cpp); no depth, stencil, scissor, culling or dither.
+// Not here: context creation (gl_context.cpp); no stencil, scissor, culling or dither.
 #include "viewer_tty/conformance/gl_reference.h"
 
 #define GL_GLEXT_PROTOTYPES 1
@@ -27,7 +28,7 @@ using raster::TextureKind;
 // GL objects of one RenderWithGl call, deleted at the end (also on exceptions).
 struct GlObjects {
     std::vector<GLuint> textures, buffers, vertexArrays, programs;
-    GLuint framebuffer = 0, renderbuffer = 0;
+    GLuint framebuffer = 0, renderbuffer = 0, depthRenderbuffer = 0;
     ~GlObjects() {
         glDeleteTextures(GLsizei(textures.size()), textures.data());
         glDeleteBuffers(GLsizei(buffers.size()), buffers.data());
@@ -35,6 +36,7 @@ struct GlObjects {
         for (GLuint p : programs) glDeleteProgram(p);
         glDeleteFramebuffers(1, &framebuffer);
         glDeleteRenderbuffers(1, &renderbuffer);
+        glDeleteRenderbuffers(1, &depthRenderbuffer);
     }
 };
 
@@ -280,6 +282,19 @@ void SetBlend(const raster::BlendState& b) {
     glBlendEquationSeparate(kEquations[int(b.eqRgb)], kEquations[int(b.eqAlpha)]);
 }
 
+// GL_DEPTH_TEST, glDepthFunc and glDepthMask of a pass (absent: the test disabled).
+void SetDepthTest(const std::optional<raster::DepthTest>& test) {
+    if (!test) {
+        glDisable(GL_DEPTH_TEST);
+        return;
+    }
+    static constexpr GLenum kFuncs[] = {GL_NEVER,   GL_LESS,     GL_EQUAL,  GL_LEQUAL,
+                                        GL_GREATER, GL_NOTEQUAL, GL_GEQUAL, GL_ALWAYS};
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(kFuncs[int(test->func)]);
+    glDepthMask(test->write ? GL_TRUE : GL_FALSE);
+}
+
 void DrawPass(const Frame& frame, const Pass& pass, const PassDraw& draw,
               const std::vector<GLuint>& textures) {
     if (draw.seamless == GL_TRUE) glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
@@ -292,6 +307,7 @@ void DrawPass(const Frame& frame, const Pass& pass, const PassDraw& draw,
             textures[t]);
     }
     SetBlend(pass.blend);
+    SetDepthTest(pass.depthTest);
     glUseProgram(draw.program);
     glBindVertexArray(draw.vertexArray);
     const size_t count = pass.indices.empty() ? pass.vertices.size() : pass.indices.size();
@@ -313,8 +329,19 @@ void SetupFramebuffer(const Frame& frame, GlObjects* objects) {
     glBindFramebuffer(GL_FRAMEBUFFER, objects->framebuffer);
     glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER,
                               objects->renderbuffer);
+    if (frame.depth) {
+        static constexpr GLenum kFormats[] = {GL_DEPTH_COMPONENT16, GL_DEPTH_COMPONENT24,
+                                              GL_DEPTH_COMPONENT32F};
+        glGenRenderbuffers(1, &objects->depthRenderbuffer);
+        glBindRenderbuffer(GL_RENDERBUFFER, objects->depthRenderbuffer);
+        glRenderbufferStorage(GL_RENDERBUFFER, kFormats[int(frame.depth->format)], frame.width,
+                              frame.height);
+        glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER,
+                                  objects->depthRenderbuffer);
+    }
     if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-        throw GlError("RGBA8 framebuffer incomplete");
+        throw GlError(frame.depth ? "RGBA8 + depth framebuffer incomplete"
+                                  : "RGBA8 framebuffer incomplete");
     // Fixed state of gl_ref_case/1.
     glViewport(0, 0, frame.width, frame.height);
     glDepthRange(0.0, 1.0);
@@ -343,11 +370,34 @@ raster::Image8 ReadPixelsTopDown(const Frame& frame) {
     return image;
 }
 
+// The depth buffer, rows top-down, as raster/depth.h stores it: unorm formats read as
+// GL_UNSIGNED_INT (Mesa replicates the bits: z16 << 16 | z16, z24 << 8 | z24 >> 16), Z32F as
+// GL_FLOAT (the stored floats, copied).
+std::vector<uint32_t> ReadDepthTopDown(const Frame& frame) {
+    const size_t w = size_t(frame.width), h = size_t(frame.height);
+    std::vector<uint32_t> bottomUp(w * h), depth(w * h);
+    const bool isFloat = frame.depth->format == raster::DepthFormat::Z32F;
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    glReadPixels(0, 0, frame.width, frame.height, GL_DEPTH_COMPONENT,
+                 isFloat ? GL_FLOAT : GL_UNSIGNED_INT, bottomUp.data());
+    CheckGl("glReadPixels(GL_DEPTH_COMPONENT)");
+    const int shift = isFloat ? 0 : (frame.depth->format == raster::DepthFormat::Z16 ? 16 : 8);
+    for (size_t y = 0; y < h; ++y)
+        for (size_t x = 0; x < w; ++x) depth[y * w + x] = bottomUp[(h - 1 - y) * w + x] >> shift;
+    return depth;
+}
+
 void DrawFrame(const Frame& frame, const std::vector<PassDraw>& draws,
                const std::vector<GLuint>& textures) {
     glClearColor(float(frame.clear[0]) / 255.0f, float(frame.clear[1]) / 255.0f,
                  float(frame.clear[2]) / 255.0f, float(frame.clear[3]) / 255.0f);
-    glClear(GL_COLOR_BUFFER_BIT);
+    GLbitfield buffers = GL_COLOR_BUFFER_BIT;
+    if (frame.depth) {
+        glDepthMask(GL_TRUE);  // glClear leaves the depth buffer alone under glDepthMask(FALSE)
+        glClearDepth(double(frame.depth->clear));
+        buffers |= GL_DEPTH_BUFFER_BIT;
+    }
+    glClear(buffers);
     for (size_t p = 0; p < frame.passes.size(); ++p)
         if (frame.passes[p].NumTriangles() > 0)
             DrawPass(frame, frame.passes[p], draws[p], textures);
@@ -368,7 +418,8 @@ std::string GlRendererString() {
     return text(GL_RENDERER) + " | " + text(GL_VERSION);
 }
 
-raster::Image8 RenderWithGl(const Frame& frame, int repeat, std::vector<double>* frameMs) {
+raster::Image8 RenderWithGl(const Frame& frame, int repeat, std::vector<double>* frameMs,
+                            std::vector<uint32_t>* depth) {
     RequireContext();
     GlObjects objects;
     // Step 1: untimed setup — framebuffer, textures, programs, vertex arrays.
@@ -390,6 +441,7 @@ raster::Image8 RenderWithGl(const Frame& frame, int repeat, std::vector<double>*
     }
     CheckGl("draw");
     // Step 3: read back.
+    if (depth) *depth = frame.depth ? ReadDepthTopDown(frame) : std::vector<uint32_t>{};
     return ReadPixelsTopDown(frame);
 }
 
