@@ -305,8 +305,9 @@ struct Context {
     }
 };
 
-ViewGeometry SampleGeometry(const Context& c, int u, int group, int terms, double weight,
+ViewGeometry SampleGeometry(const Context& c, int u, const runtime::LensGroupEm& g, double weight,
                             SampleReport* sample) {
+    const int group = g.index, terms = g.Terms();
     const auto t0 = Clock::now();
     ViewGeometry vg;
     vg.view = u;
@@ -335,11 +336,11 @@ ViewGeometry SampleGeometry(const Context& c, int u, int group, int terms, doubl
 std::vector<ViewGeometry> SolveGeometry(const Context& c, int v, const runtime::LensGroupEm& g,
                                         SampleReport* sample) {
     std::vector<ViewGeometry> geo;
-    geo.push_back(SampleGeometry(c, v, g.index, g.Terms(), 1.0, sample));
+    geo.push_back(SampleGeometry(c, v, g, 1.0, sample));
     sample->triangles += geo[0].lp.tess.triangles.size();
     for (int u = v - c.opt.neighbours; u <= v + c.opt.neighbours; ++u)
         if (u != v && u >= 0 && u < static_cast<int>(c.cameras.size()))
-            geo.push_back(SampleGeometry(c, u, g.index, g.Terms(), c.opt.neighbourWeight, sample));
+            geo.push_back(SampleGeometry(c, u, g, c.opt.neighbourWeight, sample));
     return geo;
 }
 

@@ -254,11 +254,13 @@ ReportData SampleData() {
     return d;
 }
 
-TEST(ReportWriter, WritesThreeParseableFiles) {
+TEST(ReportWriter, WritesFourParseableFiles) {
     const fs::path dir = MakeTempDir();
-    const ReportData data = SampleData();
+    ReportData data = SampleData();
+    data.budget = {
+        {"[\"lens\"]", "on circle", 10, {{"two-term model", 30.0, NAN}, {"maps", 20.0, 10.0}}}};
     WriteReport(data, dir.string());
-    EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 3);
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 4);
     // Markdown: every method and position, the stability verdicts and the left-out total.
     const std::string md = ReadAll(dir / "report.md");
     for (const MethodResult& r : data.results) {
@@ -285,6 +287,11 @@ TEST(ReportWriter, WritesThreeParseableFiles) {
     EXPECT_EQ(Count(svg, "class=\"marker\""), data.results.size());
     EXPECT_EQ(svg.find("href"), std::string::npos);
     EXPECT_EQ(svg.find("<script"), std::string::npos);
+    // The error budget: a table row per stage, null for the first stage's cost, a bar per stage.
+    EXPECT_NE(md.find("| maps | 20.00 | 10.00 |"), std::string::npos);
+    EXPECT_TRUE(j.at("budget")[0].at("stages")[0].at("cost").is_null());
+    EXPECT_EQ(j.at("budget")[0].at("stages")[1].at("psnr"), 20.0);
+    EXPECT_EQ(Count(ReadAll(dir / "budget.svg"), "<rect x="), 2u);
     fs::remove_all(dir);
 }
 

@@ -9,6 +9,7 @@
 #include "base/display_image.h"
 #include "pipeline/layout.h"
 #include "trace/image.h"
+#include "viewer_tty/report/exact_fit.h"
 
 namespace pem::report {
 namespace {
@@ -94,6 +95,24 @@ Rgb Recomposed(const Rgb& greedy, const GroupImages& im, int terms, size_t layer
     return out;
 }
 
+// The maps' targets: each non-empty layer's image with the lens coverage divided out.
+std::vector<std::vector<trace::FloatImage>> Targets(const GroupImages& im,
+                                                    const runtime::LensGroupEm& g) {
+    std::vector<std::vector<trace::FloatImage>> out(size_t(g.Terms()));
+    for (int t = 0; t < g.Terms(); ++t)
+        for (size_t l = 0; l < g.layers.size(); ++l) {
+            if (g.layers[l].Empty()) continue;
+            trace::FloatImage img = im.layers[t][l];
+            for (size_t p = 0; p < img.data.size() / 4; ++p) {
+                const float cov = im.b[0].data[4 * p + 3];
+                for (size_t c = 0; c < 4; ++c)
+                    img.data[4 * p + c] = cov > 1e-6f ? img.data[4 * p + c] / cov : 0.0f;
+            }
+            out[size_t(t)].push_back(std::move(img));
+        }
+    return out;
+}
+
 std::string GroupName(const runtime::LensGroupEm& g) {
     return nlohmann::json(g.objects).dump();
 }
@@ -126,6 +145,15 @@ GroupBudget SampleBudget(runtime::Renderer& renderer, const pipeline::TraceManif
                                            v[c] = im.layers[t][l].data[4 * p + c] / cov;
                                    });
     AddStage(&b, "layered EM", DisplayPsnr(layered, ref, w, h, mask));
+    const auto exact = ExactLookupLayers(renderer.tracer(), cam, trace.spp, g, Targets(im, g),
+                                         im.b[0], 2 * renderer.maps().res, s.threads);
+    AddStage(&b, "best maps, exact lookups",
+             DisplayPsnr(Recomposed(greedy, im, g.Terms(), exact.empty() ? 0 : exact[0].size(),
+                                    [&](int t, size_t l, size_t p, float* v) {
+                                        for (size_t c = 0; c < 4; ++c)
+                                            v[c] = exact[size_t(t)][l].rgba[4 * p + c];
+                                    }),
+                         ref, w, h, mask));
     const auto maps = renderer.LayerImages(cam, s, g.index, view);
     const Rgb drawn = Recomposed(greedy, im, g.Terms(), maps.empty() ? 0 : maps[0].size(),
                                  [&](int t, size_t l, size_t p, float* v) {

@@ -11,9 +11,12 @@
 //   two-term model      the greedy R + T paths instead of the full ray tree (traced)
 //   layered EM          the traced layer images composited with premultiplied over, times the
 //                       traced F·G: what perfect maps on these layers could give
-//   maps (geometry,     each layer's map drawn through its texgen pass alone (linear profile,
-//   texgen, resolution, exact texel weights), composited and modulated as above: what the
-//   solver)             shells, per-vertex lookups, the map resolution and the solve cost
+//   best maps, exact    each layer's map fitted through exact per-subpixel lookups at twice
+//   lookups             the maps' resolution (exact_fit.h): what no map on these shells can
+//                       show (parallax, view and path dependence)
+//   maps                the inferred maps drawn through their texgen passes alone (linear
+//                       profile, exact texel weights), composited and modulated as above: what
+//                       per-vertex lookups, MIP filtering, the resolution and the solve cost
 //   hardware frame      the hybrid frame as drawn: per-vertex F·G, 8-bit maps and framebuffer,
 //                       the hardware's compositing
 // Off the samples (between two samples, 10° above): the hybrid frame against the ray tracer at

@@ -1,0 +1,33 @@
+// SPDX-License-Identifier: MIT
+// exact_fit.h — the error budget's "best maps on these shells" stage: each layer's map fitted to
+// the traced layer images through EXACT lookups — every subpixel's own exit ray met with the
+// layer's shell, the finest level sampled bilinearly, no per-vertex interpolation, no MIP
+// filtering — unregularized and unbounded. What stays is what no map on these shells can show
+// (parallax, view and path dependence, resolution); what the hardware adds on top of it is the
+// cost of its texgen and filtering.
+//
+//   auto layers = ExactLookupLayers(tracer, camera, k, group, targets, coverage, 256, threads);
+//
+// Conventions: targets[τ][l] is layer_l_τ with the lens coverage divided out (RGBA, the maps'
+// premultiplied values); the result has Renderer::LayerImages' layout ([term][layer] RGBA per
+// pixel, the layers that have records). Face coordinates from raster's cube lookup; bilinear
+// taps clamped to their face.
+// Not here: the stage table (error_budget.h).
+#pragma once
+
+#include <vector>
+
+#include "raster/camera.h"
+#include "raster/frame.h"
+#include "runtime/lens_group_em.h"
+#include "trace/image.h"
+#include "trace/tracer.h"
+
+namespace pem::report {
+
+std::vector<std::vector<raster::ImageF>> ExactLookupLayers(
+    const trace::Tracer& tracer, const raster::Camera& camera, int k,
+    const runtime::LensGroupEm& group, const std::vector<std::vector<trace::FloatImage>>& targets,
+    const trace::FloatImage& coverage, int res, int threads);
+
+}  // namespace pem::report
