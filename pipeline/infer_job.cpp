@@ -129,6 +129,7 @@ raster::Frame UnknownFrame(int width, int height, int res, const raster::Pass& p
     frame.width = width;
     frame.height = height;
     frame.depthClamp = true;
+    frame.depth = runtime::kLensDepth;
     raster::Texture tex;
     tex.kind = raster::TextureKind::Cube;
     tex.width = tex.height = res;
@@ -346,6 +347,13 @@ std::vector<ViewGeometry> SolveGeometry(const Context& c, int v, const runtime::
 
 // The maps of one lens group ---------------------------------------------------------------
 
+// A map's texgen pass as the renderers' first pass draws it: the visible surface only.
+runtime::PassOptions DepthTested() {
+    runtime::PassOptions po;
+    po.depthTest = runtime::LayerDepthTest(true);
+    return po;
+}
+
 // Observations of a map on `shell`: per term and view, images[term][view] as the target.
 std::vector<MapInput> Observations(const std::vector<ViewGeometry>& geo, int terms, int v,
                                    const std::vector<std::vector<const trace::FloatImage*>>& images,
@@ -362,7 +370,7 @@ std::vector<MapInput> Observations(const std::vector<ViewGeometry>& geo, int ter
                         vg.view == v};
             in.pass = runtime::LayerPass(runtime::MeshOf(vg.lp.tess), vg.order,
                                          runtime::ShellCoords(vg.exits[term], shell, emOrigin),
-                                         vg.exits[term], vg.vp, {});
+                                         vg.exits[term], vg.vp, DepthTested());
             inputs.push_back(std::move(in));
         }
     return inputs;
@@ -434,7 +442,7 @@ void SolvePemMaps(Context& c, int v, const runtime::LensGroupEm& g, const std::s
         MapInput in{which == 0 ? &local : &distant, &distant, &conf, {}, 1.0, true};
         in.pass =
             runtime::LayerPass(m.Pass(), m.order, runtime::ShellCoords(m.exits, shell, g.emOrigin),
-                               m.exits, m.viewProjection, {});
+                               m.exits, m.viewProjection, DepthTested());
         Solve(c, {in}, odir, Report(v, g, which, "pem", which == 0 ? "pem_local" : "pem_distant"));
     }
 }

@@ -114,6 +114,7 @@ class FrameBatch {
         frame.width = camera_.width;
         frame.height = camera_.height;
         frame.depthClamp = true;
+        frame.depth = kLensDepth;
         frame.passes.resize(maps.size());  // no-op when copied
         for (size_t k = maps.size(); k-- > 0;) {
             const size_t slot = maps.size() - 1 - k;
@@ -121,6 +122,7 @@ class FrameBatch {
             po.texture = static_cast<int>(slot);
             po.modulate = true;
             po.blend = slot == 0 ? raster::BlendState::None() : PremultipliedOver();
+            po.depthTest = LayerDepthTest(slot == 0);
             frame.textures.push_back(Shape(*maps[k]));
             frameReady.push_back(Prepared(maps[k]));
             if (sameAs < 0)
@@ -462,11 +464,14 @@ std::vector<std::vector<raster::ImageF>> Renderer::LayerImages(const raster::Cam
             if (!map) throw base::InputError(m.maps.name, "missing map " + uses[k].name[term]);
             raster::Frame frame;
             frame.width = camera.width, frame.height = camera.height, frame.depthClamp = true;
+            frame.depth = kLensDepth;
             frame.textures.push_back(*map);
             frame.passes.emplace_back();
             const PassGeometry& geo = pemSplit && uses.size() == 2 && k == 0 ? gg.offHull : gg.all;
+            PassOptions po;
+            po.depthTest = LayerDepthTest(true);
             FillLayerPass(geo, ShellCoords(gg.exits[term], *uses[k].shell, g.emOrigin, s.threads),
-                          gg.exits[term], {}, &frame.passes[0], s.threads);
+                          gg.exits[term], po, &frame.passes[0], s.threads);
             out[static_cast<size_t>(term)].push_back(
                 raster::Render(raster::PreparedFrame(frame), ro).imageF);
         }

@@ -145,6 +145,11 @@ glm::mat4 PassViewProjection(const PassMesh& mesh, const raster::Camera& camera)
     return raster::ViewProjection(camera, 1e-3f * far, 4.0f * far);
 }
 
+raster::DepthTest LayerDepthTest(bool firstPass) {
+    return firstPass ? raster::DepthTest{raster::DepthFunc::Less, true}
+                     : raster::DepthTest{raster::DepthFunc::Equal, false};
+}
+
 raster::Pass LayerPass(const PassMesh& mesh, const std::vector<uint32_t>& order,
                        const std::vector<glm::vec3>& coords, const std::vector<ExitRay>& exits,
                        const glm::mat4& viewProjection, const PassOptions& options) {
@@ -177,6 +182,7 @@ void FillLayerPass(const PassGeometry& geometry, const std::vector<glm::vec3>& c
     pass->numUnits = 1;
     pass->texture = {options.texture, options.texture};
     pass->blend = options.blend;
+    pass->depthTest = options.depthTest;
     pass->vertices.resize(geometry.clip.size());
     ForChunks(geometry.clip.size(), threads, [&](size_t first, size_t last) {
         for (size_t v = first; v < last; ++v) {

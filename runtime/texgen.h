@@ -69,7 +69,16 @@ struct PassOptions {
     int texture = 0;        // raster::Frame::textures index for unit 0
     bool modulate = false;  // colour = (F·G, 1) instead of white
     raster::BlendState blend = raster::BlendState::None();
+    std::optional<raster::DepthTest> depthTest;  // LayerDepthTest(...) in a frame with kLensDepth
 };
+
+// The papers' multipass hardware, with a Z-buffer: the first (outermost) pass of a lens group
+// writes depth (LESS), the passes that draw the same geometry after it test EQUAL without
+// writing, so every layer lands on the visible surface only — hidden parts of a non-convex lens
+// (a cup's inner wall behind its outer wall) add nothing, to the frames and to the rendering
+// matrices alike.
+inline constexpr raster::DepthBuffer kLensDepth{raster::DepthFormat::Z24, 1.0f};
+raster::DepthTest LayerDepthTest(bool firstPass);
 
 // Clip-space transform shared by every pass of a frame: near/far around the mesh.
 glm::mat4 PassViewProjection(const PassMesh& mesh, const raster::Camera& camera);
