@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "base/atomic_file.h"
+#include "base/directory_lock.h"
 #include "base/input_error.h"
 #include "base/worker_pool.h"
 #include "pipeline/layout.h"
@@ -102,6 +103,7 @@ BakeJobResult RunBakeJob(const BakeJobOptions& o) {
     std::error_code ec;
     fs::create_directories(pemDir, ec);
     if (ec) throw base::InputError(o.outDir, "cannot create the directory: " + ec.message());
+    const base::DirectoryLock lock(o.outDir);  // one bake per directory at a time
     base::RemoveTemporaries(o.outDir);
     const TraceManifest trace = TraceOnce(o);
     const int n = static_cast<int>(trace.views.size());

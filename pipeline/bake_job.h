@@ -5,7 +5,8 @@
 //   BakeJobOptions o;  o.trace.scene = "scene.gltf";  o.outDir = "out/bake";
 //   RunBakeJob(o);     // out/bake/trace, out/bake/pem (layout.h)
 //
-// Steps: temporaries a killed run left are removed; the trace (one step: its layers span every
+// Steps: the directory is locked (a second bake into it refuses: base/directory_lock.h);
+// temporaries a killed run left are removed; the trace (one step: its layers span every
 // viewpoint) unless trace.json exists; every sample without its sample.json, `jobs` samples at
 // a time, each written whole before its sample.json; infer.json and manifest.json over every
 // sample. The maps do not depend on `jobs` or the thread counts.

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "base/atomic_file.h"
+#include "base/directory_lock.h"
 #include "base/input_error.h"
 #include "base/parallel.h"
 #include "base/png_io.h"
@@ -126,6 +127,24 @@ TEST(AtomicFile, RemoveTemporariesClearsKilledRuns) {
     RemoveTemporaries(dir.string());
     EXPECT_FALSE(std::filesystem::exists(dir / "sub" / "x.exr.tmp.123"));
     EXPECT_TRUE(std::filesystem::exists(dir / "sub" / "x.exr"));
+    std::filesystem::remove_all(dir);
+}
+
+// Directory lock ----------------------------------------------------------------------------------
+
+TEST(DirectoryLock, SecondHolderRefusedUntilTheFirstIsGone) {
+    const auto dir = FreshDir("lock");
+    {
+        const DirectoryLock first(dir.string());
+        try {
+            const DirectoryLock second(dir.string());
+            FAIL() << "a second lock was granted";
+        } catch (const InputError& e) {
+            EXPECT_NE(std::string(e.what()).find("another pemref job"), std::string::npos);
+            EXPECT_NE(std::string(e.what()).find(std::to_string(getpid())), std::string::npos);
+        }
+    }
+    EXPECT_NO_THROW(DirectoryLock again(dir.string()));  // released with its holder
     std::filesystem::remove_all(dir);
 }
 

@@ -7,6 +7,7 @@
 #include <sstream>
 #include <string>
 
+#include "base/directory_lock.h"
 #include "base/input_error.h"
 #include "pipeline/infer_job.h"
 #include "viewer_tty/cli/args.h"
@@ -79,6 +80,7 @@ int RunInferCommand() {
     o.views = a.views.empty() ? std::vector<int>{} : ParseViewList(a.views);
     CreateDirectory(o.outDir);
     if (!o.exportDir.empty()) CreateDirectory(o.exportDir);
+    const base::DirectoryLock lock(o.outDir);
     tty::ProgressLine line("pemref infer", a.quiet);
     o.progress = ProgressTo(&line);
     const pipeline::InferJobResult r = pipeline::RunInferJob(o);

@@ -53,6 +53,29 @@ std::string MatrixStem(const std::string& path) {
     return path;
 }
 
+// The matrix files and the picture; a failure removes the ones already written.
+void WriteOutputs(const RasterArgs& args, const raster::RenderingMatrix& a,
+                  const raster::Image8& image) {
+    std::vector<std::string> written;
+    try {
+        if (!args.matrixPath.empty()) {
+            const std::string stem = MatrixStem(args.matrixPath);
+            base::WriteMatrixMarket(args.matrixPath, base::MatrixView::Of(a),
+                                    "pemref rendering matrix: row 4*(y*width+x)+channel (rows "
+                                    "top-down), column 4*texel+channel (raster/texel_index.h)");
+            written.push_back(args.matrixPath);
+            base::WriteVectorMarket(stem + ".rendered.mtx", a.rendered, "rendered frame per row");
+            written.push_back(stem + ".rendered.mtx");
+            base::WriteVectorMarket(stem + ".offset.mtx", a.offset, "constant term per row");
+            written.push_back(stem + ".offset.mtx");
+        }
+        if (!args.pngPath.empty()) base::WritePng(args.pngPath, image);
+    } catch (...) {
+        for (const std::string& f : written) std::remove(f.c_str());
+        throw;
+    }
+}
+
 int RunRaster(const RasterArgs& args) {
     // Load the case and convert its texels (not timed).
     const raster::Frame frame = conformance::LoadCaseFile(args.casePath);
@@ -69,22 +92,16 @@ int RunRaster(const RasterArgs& args) {
         ms.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
     }
 
-    // Outputs: matrix first (it may refuse a non-linear frame), then the picture.
+    // Outputs: matrix first (it may refuse a non-linear frame), then the picture; all or none.
+    raster::RenderingMatrix a;
     if (!args.matrixPath.empty()) {
-        raster::RenderingMatrix a;
         try {
             a = raster::BuildRenderingMatrix(prepared, options);
         } catch (const std::invalid_argument& e) {
             throw base::InputError(args.casePath, e.what());
         }
-        const std::string stem = MatrixStem(args.matrixPath);
-        base::WriteMatrixMarket(args.matrixPath, base::MatrixView::Of(a),
-                                "pemref rendering matrix: row 4*(y*width+x)+channel (rows "
-                                "top-down), column 4*texel+channel (raster/texel_index.h)");
-        base::WriteVectorMarket(stem + ".rendered.mtx", a.rendered, "rendered frame per row");
-        base::WriteVectorMarket(stem + ".offset.mtx", a.offset, "constant term per row");
     }
-    if (!args.pngPath.empty()) base::WritePng(args.pngPath, result.image8);
+    WriteOutputs(args, a, result.image8);
 
     const auto& px = result.image8.rgba;
     std::printf("sha256: %s\n", base::Sha256Hex(px.data(), px.size()).c_str());

@@ -3,8 +3,11 @@
 #include "viewer_tty/cli/cmd_trace.h"
 
 #include <cstdio>
+#include <filesystem>
 #include <string>
 
+#include "base/directory_lock.h"
+#include "base/input_error.h"
 #include "pipeline/trace_job.h"
 #include "viewer_tty/cli/args.h"
 
@@ -53,6 +56,10 @@ int RunTraceCommand() {
     o.trace.fresnel =
         a.fresnel == "schlick" ? trace::FresnelModel::Schlick : trace::FresnelModel::Exact;
     o.segment = !a.framesOnly;
+    std::error_code ec;
+    std::filesystem::create_directories(o.outDir, ec);
+    if (ec) throw base::InputError(o.outDir, "cannot create the directory: " + ec.message());
+    const base::DirectoryLock lock(o.outDir);
     tty::ProgressLine line("pemref trace", a.quiet);  // only on a terminal
     o.progress = ProgressTo(&line);
     const pipeline::TraceManifest m = pipeline::RunTraceJob(o);
