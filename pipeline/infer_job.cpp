@@ -326,8 +326,8 @@ ViewGeometry SampleGeometry(const Context& c, int u, const runtime::LensGroupEm&
     sample->vertexRays += vg.lp.counts.Total();
     for (int term = 0; term < terms; ++term) {
         const std::string tn = runtime::TermName(term);
-        vg.cov[term] = trace::ReadExr(GroupImagePath(c.tm.dir, u, group, "b_" + tn));
-        vg.conf[term] = trace::ReadExr(GroupImagePath(c.tm.dir, u, group, "confidence_" + tn));
+        vg.cov[term] = ReadGroupImage(c.tm, u, group, "b_" + tn);
+        vg.conf[term] = ReadGroupImage(c.tm, u, group, "confidence_" + tn, 1);
         vg.exits[term] = runtime::TermExits(vg.lp.tess.paths, term);
     }
     return vg;
@@ -407,9 +407,8 @@ void SolveLayerMaps(Context& c, int v, const runtime::LensGroupEm& g,
         std::vector<std::vector<const trace::FloatImage*>> images(2);
         for (int t = 0; t < g.Terms(); ++t)
             for (const ViewGeometry& vg : geo)
-                images[static_cast<size_t>(t)].push_back(
-                    &owned.emplace_back(trace::ReadExr(GroupImagePath(
-                        c.tm.dir, vg.view, g.index, LayerImageName(static_cast<int>(l), t)))));
+                images[static_cast<size_t>(t)].push_back(&owned.emplace_back(ReadGroupImage(
+                    c.tm, vg.view, g.index, LayerImageName(static_cast<int>(l), t))));
         Solve(c, Observations(geo, g.Terms(), v, images, g.layers[l].shell, g.emOrigin), odir,
               Report(v, g, static_cast<int>(l), term, LayerMapName(static_cast<int>(l))));
     }
@@ -426,11 +425,9 @@ void SolveLayerMaps(Context& c, int v, const runtime::LensGroupEm& g,
 void SolvePemMaps(Context& c, int v, const runtime::LensGroupEm& g, const std::string& odir) {
     const runtime::MirrorGeometry m =
         runtime::MakeMirrorGeometry(c.scene, g.index, c.cameras[static_cast<size_t>(v)]);
-    const trace::FloatImage distant =
-        trace::ReadExr(GroupImagePath(c.tm.dir, v, g.index, "distant"));
-    const trace::FloatImage local = trace::ReadExr(GroupImagePath(c.tm.dir, v, g.index, "local"));
-    const trace::FloatImage conf =
-        trace::ReadExr(GroupImagePath(c.tm.dir, v, g.index, "confidence_R"));
+    const trace::FloatImage distant = ReadGroupImage(c.tm, v, g.index, "distant");
+    const trace::FloatImage local = ReadGroupImage(c.tm, v, g.index, "local");
+    const trace::FloatImage conf = ReadGroupImage(c.tm, v, g.index, "confidence_R", 1);
     const bool convex = runtime::AllOnHull(runtime::HullTriangles(m.mesh));
     if (convex) {
         c.result->leftOut.push_back(

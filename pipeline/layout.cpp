@@ -3,7 +3,9 @@
 #include "pipeline/layout.h"
 
 #include <cstdio>
+#include <filesystem>
 
+#include "base/input_error.h"
 #include "runtime/lens_group_em.h"
 
 namespace pem::pipeline {
@@ -65,6 +67,17 @@ std::string BakeTraceDir(const std::string& bakeDir) {
 
 std::string BakePemDir(const std::string& bakeDir) {
     return bakeDir + "/pem";
+}
+
+void CheckInside(const std::string& dir, const std::string& path) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    const fs::path root = fs::weakly_canonical(dir, ec);
+    const fs::path real = fs::weakly_canonical(path, ec);
+    if (ec) throw base::InputError(path, "cannot resolve the path: " + ec.message());
+    const fs::path rel = real.lexically_relative(root);
+    if (rel.empty() || *rel.begin() == "..")
+        throw base::InputError(path, "leads outside " + dir + " (" + real.string() + ")");
 }
 
 std::string PreviewPath(const std::string& exrPath) {

@@ -53,6 +53,10 @@ std::string SampleJsonPath(const std::string& pemDir, int view);
 std::string BakeTraceDir(const std::string& bakeDir);
 std::string BakePemDir(const std::string& bakeDir);
 
+// Throws base::InputError(path, ...) unless `path`, symbolic links resolved, lies inside `dir`
+// (nothing is read or written outside the directories the user named).
+void CheckInside(const std::string& dir, const std::string& path);
+
 // `path` with a ".exr" ending replaced by ".png" (the preview next to an image).
 std::string PreviewPath(const std::string& exrPath);
 

@@ -56,6 +56,10 @@ PemManifest ManifestFromJson(const json& j) {
     m.height = j.at("size").at(1).get<int>();
     m.spp = j.at("spp").get<int>();
     m.res = j.at("res").get<int>();
+    if (j.at("size").size() != 2 || m.width < 1 || m.height < 1 || m.spp < 1)
+        throw std::runtime_error("bad size or spp");
+    if (m.res < 1 || m.res > 4096 || (m.res & (m.res - 1)) != 0)
+        throw std::runtime_error("res " + std::to_string(m.res) + " is not a power of two");
     m.profile = j.at("profile").get<std::string>();
     m.fullTreeDepth = j.at("full_tree_depth").get<int>();
     m.minWeight = j.at("min_weight").get<double>();

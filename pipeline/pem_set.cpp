@@ -16,23 +16,39 @@ namespace {
 // Maps by path, loaded on first use; a missing file is remembered as nullptr.
 class MapCache {
   public:
-    explicit MapCache(std::string dir) : dir_(std::move(dir)) {}
+    MapCache(std::string dir, int res) : dir_(std::move(dir)), res_(res) {}
 
     const raster::Texture* Get(int view, int group, const std::string& name) {
         const std::string path = MapPath(dir_, view, group, name);
         auto it = cache_.find(path);
         if (it == cache_.end()) {
             std::unique_ptr<raster::Texture> tex;
-            if (std::filesystem::exists(path))
-                tex = std::make_unique<raster::Texture>(
-                    infer::ToTexture8(infer::ReadCubeMapExr(path), raster::SamplerState{}));
+            if (std::filesystem::exists(path)) tex = std::make_unique<raster::Texture>(Load(path));
             it = cache_.emplace(path, std::move(tex)).first;
         }
         return it->second.get();
     }
 
   private:
+    // The map's 8-bit copy: inside the directory, a readable cube map of the manifest's size.
+    raster::Texture Load(const std::string& path) const {
+        CheckInside(dir_, path);
+        infer::CubeMapF map;
+        try {
+            map = infer::ReadCubeMapExr(path);
+        } catch (const base::InputError&) {
+            throw;
+        } catch (const std::exception& e) {
+            throw base::InputError(path, std::string("cannot read the map: ") + e.what());
+        }
+        if (map.size != res_)
+            throw base::InputError(path, "face size " + std::to_string(map.size) +
+                                             ", the manifest says " + std::to_string(res_));
+        return infer::ToTexture8(map, raster::SamplerState{});
+    }
+
     std::string dir_;
+    int res_;
     std::map<std::string, std::unique_ptr<raster::Texture>> cache_;
 };
 
@@ -50,7 +66,7 @@ runtime::MapSet LoadMapSet(const PemManifest& m) {
     tracing.fullTreeDepth = m.fullTreeDepth, tracing.minWeight = m.minWeight;
     tracing.fresnel = m.fresnel;
     set.tracing = tracing.Tracing();
-    auto cache = std::make_shared<MapCache>(m.dir);
+    auto cache = std::make_shared<MapCache>(m.dir, m.res);
     set.map = [cache](int view, int group, const std::string& name) {
         return cache->Get(view, group, name);
     };

@@ -118,6 +118,7 @@ TraceManifest ManifestFromJson(const json& j) {
     TraceManifest m;
     m.scene = j.at("scene").get<std::string>();
     m.sceneGiven = j.at("scene_given").get<std::string>();
+    if (j.at("size").size() != 2) throw std::runtime_error("size is not [width, height]");
     m.width = j.at("size").at(0).get<int>();
     m.height = j.at("size").at(1).get<int>();
     m.spp = j.at("spp").get<int>();
@@ -164,6 +165,31 @@ TraceManifest ReadTraceManifest(const std::string& dir) {
         ReadJsonFile(dir + "/" + kTraceJson, "run pemref trace first", ManifestFromJson);
     m.dir = dir;
     return m;
+}
+
+namespace {
+
+trace::FloatImage ReadChecked(const TraceManifest& m, const std::string& path, int channels) {
+    CheckInside(m.dir, path);
+    trace::FloatImage img = trace::ReadExr(path);
+    if (img.width != m.width || img.height != m.height || img.channels != channels)
+        throw base::InputError(path, std::to_string(img.width) + "x" + std::to_string(img.height) +
+                                         " with " + std::to_string(img.channels) +
+                                         " channels; the trace is " + std::to_string(m.width) +
+                                         "x" + std::to_string(m.height) + " (" +
+                                         std::to_string(channels) + " channels expected)");
+    return img;
+}
+
+}  // namespace
+
+trace::FloatImage ReadFrameImage(const TraceManifest& m, int view, const std::string& name) {
+    return ReadChecked(m, FrameImagePath(m.dir, view, name), 3);
+}
+
+trace::FloatImage ReadGroupImage(const TraceManifest& m, int view, int group,
+                                 const std::string& name, int channels) {
+    return ReadChecked(m, GroupImagePath(m.dir, view, group, name), channels);
 }
 
 std::string ResolveScene(const std::string& dir, const std::string& stored,

@@ -18,6 +18,7 @@
 
 #include "raster/camera.h"
 #include "runtime/lens_group_em.h"
+#include "trace/image.h"
 #include "trace/render.h"
 #include "trace/tracer.h"
 
@@ -52,6 +53,12 @@ struct TraceManifest {
 };
 
 void WriteTraceManifest(const TraceManifest& manifest);  // dir/trace.json
+
+// A trace image (layout.h) checked against the manifest: inside the directory, the trace's size
+// and `channels` channels; base::InputError naming the file otherwise.
+trace::FloatImage ReadFrameImage(const TraceManifest& m, int view, const std::string& name);
+trace::FloatImage ReadGroupImage(const TraceManifest& m, int view, int group,
+                                 const std::string& name, int channels = 4);
 TraceManifest ReadTraceManifest(const std::string& dir);
 
 // The scene file of a trace or PEM directory: `stored` relative to `dir` (or absolute); when it

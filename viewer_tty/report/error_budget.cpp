@@ -47,15 +47,16 @@ struct GroupImages {
     std::vector<trace::FloatImage> layers[2];  // layer_l_τ, every layer
 };
 
-GroupImages ReadGroupImages(const std::string& dir, int view, const runtime::LensGroupEm& g) {
+GroupImages ReadGroupImages(const pipeline::TraceManifest& tm, int view,
+                            const runtime::LensGroupEm& g) {
     GroupImages im;
     for (int t = 0; t < g.Terms(); ++t) {
         const std::string tn = runtime::TermName(t);
-        im.fg[t] = trace::ReadExr(pipeline::GroupImagePath(dir, view, g.index, "FG_" + tn));
-        im.b[t] = trace::ReadExr(pipeline::GroupImagePath(dir, view, g.index, "b_" + tn));
+        im.fg[t] = pipeline::ReadGroupImage(tm, view, g.index, "FG_" + tn);
+        im.b[t] = pipeline::ReadGroupImage(tm, view, g.index, "b_" + tn);
         for (size_t l = 0; l < g.layers.size(); ++l)
-            im.layers[t].push_back(trace::ReadExr(pipeline::GroupImagePath(
-                dir, view, g.index, pipeline::LayerImageName(static_cast<int>(l), t))));
+            im.layers[t].push_back(pipeline::ReadGroupImage(
+                tm, view, g.index, pipeline::LayerImageName(static_cast<int>(l), t)));
     }
     return im;
 }
@@ -130,9 +131,9 @@ GroupBudget SampleBudget(runtime::Renderer& renderer, const pipeline::TraceManif
     const int view = renderer.maps().inferred.front();
     const raster::Camera cam = renderer.SampleCamera(view);
     const int w = cam.width, h = cam.height;
-    const Rgb ref = RgbOf(trace::ReadExr(pipeline::FrameImagePath(trace.dir, view, "reference")));
-    const Rgb greedy = RgbOf(trace::ReadExr(pipeline::FrameImagePath(trace.dir, view, "greedy")));
-    const GroupImages im = ReadGroupImages(trace.dir, view, g);
+    const Rgb ref = RgbOf(pipeline::ReadFrameImage(trace, view, "reference"));
+    const Rgb greedy = RgbOf(pipeline::ReadFrameImage(trace, view, "greedy"));
+    const GroupImages im = ReadGroupImages(trace, view, g);
     std::vector<uint8_t> mask(ref.size() / 3);
     for (size_t p = 0; p < mask.size(); ++p) mask[p] = im.b[0].data[4 * p + 3] > 0.5f;
     GroupBudget b{GroupName(g), "on circle", 0, {}};
