@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // fragment_base.cpp — the baseline build of the fragment stage (fragment.h), the dispatcher, and
-// the public entry points of cube_lookup.h, lod.h and sampler.h (which forward to it).
+// the public entry points of cube_lookup.h, lod.h, aniso.h and sampler.h (which forward to it).
 #include <cstdlib>
 #include <cstring>
 
@@ -49,6 +49,16 @@ LodResult LevelsFor(float lambda, MipFilter mip, int numLevels) {
 LodResult SelectLod(float rhoSquared, const PipeLodState& st, MipFilter mip, int numLevels,
                     bool exactLog2) {
     return isa::SelectLod(rhoSquared, st, mip, numLevels, exactLog2);
+}
+float AnisoRhoSquared(const std::array<float, 4>& d, int maxAniso) {
+    return isa::AnisoRhoSquared(d, maxAniso);
+}
+AnisoEllipse AnisoEllipseOf(const std::array<float, 4>& d) {
+    return isa::AnisoEllipseOf(d);
+}
+std::vector<AnisoProbe> AnisoProbesOf(const AnisoEllipse& e, float texU, float texV,
+                                      int64_t maxProbes) {
+    return isa::AnisoProbesOf(e, texU, texV, maxProbes);
 }
 void SampleLanes(const PreparedFrame& frame, int textureIndex, const RenderOptions& options,
                  const LaneCoords& coords, std::array<RgbaF, kLanes>* colour,

@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "raster/aniso.h"
 #include "raster/blend.h"
 #include "raster/cube_lookup.h"
 #include "raster/depth.h"

@@ -40,6 +40,9 @@ struct SamplerState {
     Wrap wrapS = Wrap::ClampToEdge, wrapT = Wrap::ClampToEdge;  // 2D only; cubes clamp
     bool seamless = true;                                       // cube maps only
     float lodBias = 0.0f, minLod = -1000.0f, maxLod = 1000.0f;
+    // GL_TEXTURE_MAX_ANISOTROPY as glTexParameterf gives it: 1 = off; llvmpipe filters
+    // anisotropically from 2 on (the value is clamped to 16 and truncated; aniso.h).
+    float maxAnisotropy = 1.0f;
     bool operator==(const SamplerState&) const = default;
 };
 

@@ -20,6 +20,7 @@ struct PipeLodState {
     float lodBias = 0, minLod = 0, maxLod = 0;
     bool applyMinLod = false, applyMaxLod = false, biasNonZero = false;
     bool minMaxEqual = false;
+    int maxAnisotropy = 0;  // the pipe's max_anisotropy (aniso.h): > 1 selects the aniso path
 };
 
 PipeLodState DerivePipeLodState(const SamplerState& s, int numLevels);

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "raster/aniso.h"
 #include "raster/lod.h"
 #include "raster/numeric.h"
 
@@ -21,6 +22,7 @@ PipeLodState DerivePipeLodState(const SamplerState& s, int /*numLevels*/) {
     st.minLod = std::max(s.minLod, 0.0f);
     st.maxLod = s.maxLod;
     st.biasNonZero = st.lodBias != 0.0f;
+    st.maxAnisotropy = PipeMaxAnisotropy(s.maxAnisotropy);
     const bool lodUsed = s.mipFilter != MipFilter::None || s.minFilter != s.magFilter;
     if (lodUsed) {
         if (st.minLod == st.maxLod) {

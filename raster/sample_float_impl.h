@@ -256,10 +256,11 @@ RgbaF FilterFootprint(const LevelView& lv, const Footprint& f, bool weighted, fl
     return out;
 }
 
-void FilterFloat(const PreparedFrame& frame, const Texture& tex, const PreparedTexture& pt,
-                 bool exactTexels, const LaneSample& ls, std::array<RgbaF, kLanes>* colour,
-                 std::array<PixelTaps, kLanes>* taps) {
-    const SamplerState& s = tex.sampler;
+// Filters texture `tex` with sampler state `s` (its own, or the anisotropic path's bilinear
+// fallback).
+void FilterFloat(const PreparedFrame& frame, const Texture& tex, const SamplerState& s,
+                 const PreparedTexture& pt, bool exactTexels, const LaneSample& ls,
+                 std::array<RgbaF, kLanes>* colour, std::array<PixelTaps, kLanes>* taps) {
     const bool cube = tex.kind == TextureKind::Cube;
     const auto& levels = exactTexels ? pt.levelsExact : pt.levelsF;
     bool anyLerp = false;

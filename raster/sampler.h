@@ -10,13 +10,15 @@
 // for all eight lanes.
 //
 // Taps are the linear weights of the filter: bilinear weights times the MIP weight, with a
-// seamless cube corner's missing texel spread over the other three. They are exact for the
-// float filtering paths; for the 8-bit fixed-point paths they are the ideal weights that path
-// rounds (see docs/raster-model.md for the bound).
+// seamless cube corner's missing texel spread over the other three, or an anisotropic
+// footprint's table weights over their sum (aniso.h). They are exact for the float filtering
+// paths; for the 8-bit fixed-point paths they are the ideal weights that path rounds (see
+// docs/raster-model.md for the bound).
 #pragma once
 
 #include <array>
 #include <cstdint>
+#include <vector>
 
 #include "raster/blend.h"
 #include "raster/frame.h"
@@ -29,18 +31,44 @@ struct Tap {
     float weight;
 };
 
-constexpr int kMaxTaps = 8;  // two levels x four texels
+constexpr int kMaxTaps = 8;  // bilinear paths: two levels x four texels
 
+// A pixel's taps: up to kMaxTaps inline (the bilinear paths, merged per texel) and, for an
+// anisotropic footprint (one entry per texel), the rest in `more`: storage the anisotropic path
+// owns per thread, valid until that thread samples again. A plain aggregate, so the shading
+// loop's per-group array costs nothing when it is not used: value-initialise it (PixelTaps{})
+// before use.
 struct PixelTaps {
-    int count = 0;
+    int count;  // entries of `tap` in use
     std::array<Tap, kMaxTaps> tap;
+    std::vector<Tap>* more;  // null: none beyond `tap`
+
+    int Count() const { return count + (more ? static_cast<int>(more->size()) : 0); }
+    const Tap& At(int k) const {
+        return k < kMaxTaps ? tap[static_cast<size_t>(k)]
+                            : (*more)[static_cast<size_t>(k - kMaxTaps)];
+    }
+    // Adds to the texel's inline entry, or makes one (the bilinear paths: <= kMaxTaps texels).
     void Add(uint32_t texel, float weight) {
         for (int k = 0; k < count; ++k)
-            if (tap[k].texel == texel) {
-                tap[k].weight += weight;
+            if (tap[static_cast<size_t>(k)].texel == texel) {
+                tap[static_cast<size_t>(k)].weight += weight;
                 return;
             }
-        tap[count++] = {texel, weight};
+        if (count < kMaxTaps) tap[static_cast<size_t>(count++)] = {texel, weight};
+    }
+    // Appends an entry for a texel not yet present; beyond kMaxTaps into *overflow (emptied on
+    // first use).
+    void Append(uint32_t texel, float weight, std::vector<Tap>* overflow) {
+        if (count < kMaxTaps) {
+            tap[static_cast<size_t>(count++)] = {texel, weight};
+            return;
+        }
+        if (!more) {
+            more = overflow;
+            more->clear();
+        }
+        more->push_back({texel, weight});
     }
 };
 

@@ -1,10 +1,12 @@
 // SPDX-License-Identifier: MIT
 // sampler_impl.h — texture lookups of eight lanes (sampler.h): derivatives, face selection, LOD,
-// then llvmpipe's float ("SoA") or 8-bit ("AoS") filtering path, whichever it would take.
+// then llvmpipe's float ("SoA") or 8-bit ("AoS") filtering path, whichever it would take, or
+// its anisotropic path (aniso_impl.h) when the sampler asks for one.
 #pragma once
 #include <algorithm>
 #include <cmath>
 
+#include "raster/aniso_impl.h"
 #include "raster/cube_lookup_impl.h"
 #include "raster/lod_impl.h"
 #include "raster/numeric.h"
@@ -42,6 +44,10 @@ void SampleLanes(const PreparedFrame& frame, int textureIndex, const RenderOptio
     const Texture& tex = *pt.source;
     const SamplerState& s = tex.sampler;
     const PipeLodState& lodState = pt.lod;
+    if (lodState.maxAnisotropy > 1) {
+        SampleAniso(frame, textureIndex, options, coords, colour, taps, live);
+        return;
+    }
     if (!taps && FastSeamlessApplies(tex, lodState, options)) {
         SampleFastSeamless(frame, textureIndex, coords, live, colour, cache);
         return;
@@ -96,7 +102,7 @@ void SampleLanes(const PreparedFrame& frame, int textureIndex, const RenderOptio
 
     // Filtering.
     if (options.profile == Profile::Linear || !UsesAosPath(tex))
-        FilterFloat(frame, tex, pt, options.profile == Profile::Linear, ls, colour, taps);
+        FilterFloat(frame, tex, s, pt, options.profile == Profile::Linear, ls, colour, taps);
     else
         FilterFixed8(frame, tex, pt, ls, colour, taps);
 }

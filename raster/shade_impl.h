@@ -89,7 +89,8 @@ void ShadeGroup(const FragmentTarget& tg, const Pass& pass, const LaneAttribs& q
 
     // Texture units.
     std::array<std::array<RgbaF, kLanes>, kMaxUnits> tex{};
-    std::array<PixelTaps, kLanes> taps;
+    std::array<PixelTaps, kLanes> taps;  // matrix mode only (set up below)
+    if (wantTaps) taps.fill(PixelTaps{});
     for (int u = 0; u < pass.numUnits; ++u) {
         LaneCoords lc;
         for (int l = 0; l < kLanes; ++l)
@@ -136,10 +137,11 @@ void ShadeGroup(const FragmentTarget& tg, const Pass& pass, const LaneAttribs& q
                     off += static_cast<double>(src[c]);
                     continue;
                 }
-                for (int k = 0; k < taps[l].count; ++k)
+                const PixelTaps& lane = taps[static_cast<size_t>(l)];
+                for (int k = 0; k < lane.Count(); ++k)
                     row.push_back(
-                        {4 * taps[l].tap[k].texel + static_cast<uint32_t>(c),
-                         static_cast<double>(taps[l].tap[k].weight) * static_cast<double>(mod[c])});
+                        {4 * lane.At(k).texel + static_cast<uint32_t>(c),
+                         static_cast<double>(lane.At(k).weight) * static_cast<double>(mod[c])});
             }
             continue;
         }

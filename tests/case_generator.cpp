@@ -880,6 +880,358 @@ void Depth(std::vector<NamedCase>* out) {
     DepthIntersections(out);
 }
 
+// Anisotropic filtering ------------------------------------------------------------------------
+
+SamplerState Aniso(Filter min, MipFilter mip, Filter mag, float maxAniso, bool seamless = true) {
+    SamplerState s = Sampler(min, mip, mag, seamless);
+    s.maxAnisotropy = maxAniso;
+    return s;
+}
+
+const char* MagName(Filter mag) {
+    return mag == Filter::Linear ? "linear" : "nearest";
+}
+
+// A ground plane y = -1 from just in front of the eye to the horizon (perspective, the eye at
+// the origin looking down -z, tilted down by `pitchDeg`): coordinates (x, z) * scale for a 2D
+// unit, or the direction (x, -1, z) for a cube unit (its -Y face seen at grazing angles, the
+// side faces near the horizon). Footprints grow without bound towards the horizon along z.
+void AddGroundPlane(Pass* p, float aspect, float pitchDeg, float scale, bool cubeDirs,
+                    bool swapST = false, int tiles = 4) {
+    const glm::mat4 proj = glm::perspective(glm::radians(50.0f), aspect, 0.1f, 200.0f);
+    const glm::mat4 view = glm::rotate(glm::mat4(1.0f), glm::radians(pitchDeg), glm::vec3(1, 0, 0));
+    const glm::mat4 vp = proj * view;
+    const float xs[2] = {-60.0f, 60.0f};
+    auto vertex = [&](float x, float z) {
+        const glm::vec3 pos(x, -1.0f, z);
+        const glm::vec2 st = swapST ? glm::vec2(z, x) : glm::vec2(x, z);
+        const glm::vec3 c = cubeDirs ? pos : glm::vec3(st * scale, 0.0f);
+        return V(vp * glm::vec4(pos, 1.0f), c);
+    };
+    // Tiles in z (near to far), so the far ones are small in clip space.
+    float z0 = -0.3f;
+    for (int k = 0; k < tiles; ++k) {
+        const float z1 = z0 * 4.0f;
+        const Vertex a = vertex(xs[0], z0), b = vertex(xs[1], z0), c = vertex(xs[1], z1),
+                     d = vertex(xs[0], z1);
+        const uint32_t base = static_cast<uint32_t>(p->vertices.size());
+        for (const Vertex& v : {a, b, c, d}) p->vertices.push_back(v);
+        for (uint32_t i : {0u, 1u, 2u, 0u, 2u, 3u}) p->indices.push_back(base + i);
+        z0 = z1;
+    }
+}
+
+// A vertical mirror cylinder (radius 1, height 2.4) seen from the side; texture coordinate =
+// reflection vector (cube) — stretched strongly across the cylinder near its silhouettes.
+void AddMirrorCylinder(Pass* p, int segs, float aspect, const glm::vec3& eye) {
+    const glm::mat4 proj = glm::perspective(glm::radians(40.0f), aspect, 0.1f, 100.0f);
+    const glm::mat4 view = glm::lookAt(eye, glm::vec3(0.0f), glm::vec3(0, 1, 0));
+    const glm::mat4 vp = proj * view;
+    auto vertex = [&](int j, float y) {
+        const float ph = 6.28318531f * static_cast<float>(j) / static_cast<float>(segs);
+        const glm::vec3 n(std::cos(ph), 0.0f, std::sin(ph));
+        const glm::vec3 pos(n.x, y, n.z);
+        const glm::vec3 in = glm::normalize(pos - eye);
+        return V(vp * glm::vec4(pos, 1.0f), in - 2.0f * glm::dot(n, in) * n);
+    };
+    for (int j = 0; j < segs; ++j) {
+        const Vertex a = vertex(j, -1.2f), b = vertex(j + 1, -1.2f), c = vertex(j + 1, 1.2f),
+                     d = vertex(j, 1.2f);
+        const uint32_t base = static_cast<uint32_t>(p->vertices.size());
+        for (const Vertex& v : {a, b, c, d}) p->vertices.push_back(v);
+        for (uint32_t i : {0u, 1u, 2u, 0u, 2u, 3u}) p->indices.push_back(base + i);
+    }
+}
+
+// 2D: every min/mag/mip filter on a ground plane (wraps cycled), max_anisotropy 16. Without a
+// MIP filter every footprint stays on level 0, so those planes are textured more coarsely; one
+// plane at the finer scale keeps level-0 footprints tens of thousands of texels long (the quads
+// at the far edge, whose helper pixels extrapolate towards the horizon).
+void AnisoPlanes2D(std::vector<NamedCase>* out) {
+    const Filter filters[2] = {Filter::Nearest, Filter::Linear};
+    const MipFilter mips[3] = {MipFilter::None, MipFilter::Nearest, MipFilter::Linear};
+    const Wrap wraps[3] = {Wrap::Repeat, Wrap::MirroredRepeat, Wrap::ClampToEdge};
+    const char* wrapNames[3] = {"repeat", "mirror", "clamp"};
+    uint64_t seed = 12000;
+    int k = 0;
+    for (Filter min : filters)
+        for (MipFilter mip : mips)
+            for (Filter mag : filters) {
+                const int wi = k++ % 3;
+                Frame f = NewFrame(64, 48);
+                SamplerState s = Aniso(min, mip, mag, 16.0f);
+                s.wrapS = wraps[wi];
+                s.wrapT = wraps[(wi + 1) % 3];
+                f.textures.push_back(MakeTexture(TextureKind::Tex2D, 64, 64, s, ++seed));
+                Pass p;
+                AddGroundPlane(&p, 64.0f / 48.0f, 8.0f, mip == MipFilter::None ? 0.03f : 0.25f,
+                               false);
+                f.passes.push_back(p);
+                out->push_back({std::string("aniso_plane2d_") + FilterName(min, mip) + "_mag_" +
+                                    MagName(mag) + "_" + wrapNames[wi],
+                                f});
+            }
+    Frame f = NewFrame(64, 48);
+    SamplerState s = Aniso(Filter::Nearest, MipFilter::None, Filter::Nearest, 16.0f);
+    s.wrapS = s.wrapT = Wrap::Repeat;
+    f.textures.push_back(MakeTexture(TextureKind::Tex2D, 64, 64, s, ++seed));
+    Pass p;
+    AddGroundPlane(&p, 64.0f / 48.0f, 8.0f, 0.25f, false);
+    f.passes.push_back(p);
+    out->push_back({"aniso_plane2d_level0_horizon", f});
+}
+
+// 2D: the GL value (off below 2, truncated, clamped to 16), LOD bias and clamps, textures whose
+// deep levels are thinner than one texel, magnification, two units.
+void AnisoValues2D(std::vector<NamedCase>* out) {
+    uint64_t seed = 12100;
+    const float values[] = {2.0f, 4.0f, 8.0f, 16.0f, 1.5f, 1.0f, 2.5f, 7.3f, 100.0f};
+    const char* names[] = {"2", "4", "8", "16", "1_5", "1", "2_5", "7_3", "100"};
+    for (size_t i = 0; i < std::size(values); ++i) {
+        Frame f = NewFrame(64, 48);
+        SamplerState s = Aniso(Filter::Linear, MipFilter::Linear, Filter::Linear, values[i]);
+        s.wrapS = s.wrapT = Wrap::Repeat;
+        f.textures.push_back(MakeTexture(TextureKind::Tex2D, 64, 64, s, ++seed));
+        Pass p;
+        AddGroundPlane(&p, 64.0f / 48.0f, 12.0f, 0.5f, false);
+        f.passes.push_back(p);
+        out->push_back({std::string("aniso_max_") + names[i], f});
+    }
+    struct Lod {
+        const char* name;
+        float bias, minLod, maxLod;
+        MipFilter mip;
+        Filter min, mag;
+    };
+    const Lod lods[] = {
+        {"bias_plus1_3", 1.3f, -1000, 1000, MipFilter::Linear, Filter::Linear, Filter::Linear},
+        {"bias_minus2", -2.0f, -1000, 1000, MipFilter::Linear, Filter::Linear, Filter::Linear},
+        {"bias_0_37_nearest", 0.37f, -1000, 1000, MipFilter::Nearest, Filter::Nearest,
+         Filter::Nearest},
+        {"min_lod_1_5", 0.0f, 1.5f, 1000, MipFilter::Linear, Filter::Linear, Filter::Linear},
+        {"max_lod_1", 0.0f, -1000, 1.0f, MipFilter::Linear, Filter::Linear, Filter::Linear},
+        {"min_eq_max_2", 0.0f, 2.0f, 2.0f, MipFilter::Linear, Filter::Linear, Filter::Linear},
+        {"min_gt_max", 0.0f, 3.0f, 1.0f, MipFilter::Nearest, Filter::Linear, Filter::Linear},
+        {"bias_minus1_none", -1.0f, -1000, 1000, MipFilter::None, Filter::Linear, Filter::Nearest}};
+    for (const Lod& v : lods) {
+        Frame f = NewFrame(64, 48);
+        SamplerState s = Aniso(v.min, v.mip, v.mag, 8.0f);
+        s.lodBias = v.bias;
+        s.minLod = v.minLod;
+        s.maxLod = v.maxLod;
+        s.wrapS = s.wrapT = Wrap::Repeat;
+        f.textures.push_back(MakeTexture(TextureKind::Tex2D, 32, 32, s, ++seed));
+        Pass p;
+        AddGroundPlane(&p, 64.0f / 48.0f, 10.0f, 0.4f, false);
+        f.passes.push_back(p);
+        out->push_back({std::string("aniso_lod_") + v.name, f});
+    }
+    // Non-square: the level size llvmpipe scales the coordinates by drops below one texel (in t
+    // for the wide ones; in s for the tall one, whose s runs along the view).
+    for (auto [w, h] : {std::pair{64, 4}, std::pair{4, 64}, std::pair{128, 1}}) {
+        Frame f = NewFrame(64, 48);
+        SamplerState s = Aniso(Filter::Linear, MipFilter::Linear, Filter::Linear, 16.0f);
+        s.wrapS = Wrap::MirroredRepeat;
+        s.wrapT = Wrap::Repeat;
+        f.textures.push_back(MakeTexture(TextureKind::Tex2D, w, h, s, ++seed));
+        Pass p;
+        const bool tall = h > w;
+        AddGroundPlane(&p, 64.0f / 48.0f, 6.0f, tall ? 1.0f : 0.3f, false, tall);
+        f.passes.push_back(p);
+        out->push_back({"aniso_nonsquare_" + std::to_string(w) + "x" + std::to_string(h), f});
+    }
+    // Magnification (level 0, small ellipses) on a tilted quad, with and without a MIP filter.
+    for (MipFilter mip : {MipFilter::Linear, MipFilter::None}) {
+        Frame f = NewFrame(64, 64);
+        f.textures.push_back(MakeTexture(
+            TextureKind::Tex2D, 8, 8, Aniso(Filter::Linear, mip, Filter::Nearest, 4.0f), ++seed));
+        Pass p;
+        const glm::vec3 c[4] = {{0.1f, 0.2f, 0}, {0.9f, 0.1f, 0}, {0.8f, 0.6f, 0}, {0.2f, 0.5f, 0}};
+        const glm::vec4 pos[4] = {
+            {-1, -1, 0, 1}, {1, -1, 0, 1}, {2.0f, 2.0f, 0, 2}, {-2.0f, 2.0f, 0, 2}};
+        for (int k : {0, 1, 2, 0, 2, 3}) p.vertices.push_back(V(pos[k], c[k]));
+        f.passes.push_back(p);
+        out->push_back({std::string("aniso_magnify_") + FilterName(Filter::Linear, mip), f});
+    }
+    // Coordinates near 2^31 texels: boxes whose far edge overflows int32 hold no texel, and
+    // llvmpipe filters those pixels bilinearly.
+    {
+        Frame f = NewFrame(64, 32);
+        SamplerState s = Aniso(Filter::Linear, MipFilter::None, Filter::Linear, 16.0f);
+        s.wrapS = s.wrapT = Wrap::Repeat;
+        f.textures.push_back(MakeTexture(TextureKind::Tex2D, 64, 64, s, ++seed));
+        Pass p;
+        const float big = 33554430.0f;  // * 64 texels: just below 2^31
+        const glm::vec3 c[4] = {
+            {big - 40.0f, 0, 0}, {big + 8.0f, 0, 0}, {big + 8.0f, 0.5f, 0}, {big - 40.0f, 0.5f, 0}};
+        AddQuad(&p, -1, -1, 1, 1, c);
+        f.passes.push_back(p);
+        out->push_back({"aniso_coords_beyond_int32", f});
+    }
+    // A wall receding to the right (w from 1 to 4): LODs differ between the two quads of a
+    // lane block, so without a MIP filter the second quad takes the first quad's level.
+    const std::tuple<Filter, MipFilter, Filter> walls[] = {
+        {Filter::Linear, MipFilter::None, Filter::Nearest},
+        {Filter::Nearest, MipFilter::None, Filter::Linear},
+        {Filter::Linear, MipFilter::Linear, Filter::Linear},
+        {Filter::Nearest, MipFilter::Nearest, Filter::Linear}};
+    for (const auto& [min, mip, mag] : walls) {
+        Frame f = NewFrame(64, 48);
+        SamplerState s = Aniso(min, mip, mag, 16.0f);
+        s.wrapS = s.wrapT = Wrap::Repeat;
+        f.textures.push_back(MakeTexture(TextureKind::Tex2D, 32, 32, s, ++seed));
+        Pass p;
+        const glm::vec3 c[4] = {{0, 0, 0}, {6, 0, 0}, {6, 1.5f, 0}, {0, 1.5f, 0}};
+        const glm::vec4 pos[4] = {
+            {-1, -1, 0, 1}, {3.6f, -3.6f, 0, 4}, {3.6f, 3.6f, 0, 4}, {-1, 1, 0, 1}};
+        for (int k : {0, 1, 2, 0, 2, 3}) p.vertices.push_back(V(pos[k], c[k]));
+        f.passes.push_back(p);
+        out->push_back(
+            {std::string("aniso_wall_") + FilterName(min, mip) + "_mag_" + MagName(mag), f});
+    }
+    // Two units: a 2D plane texture with anisotropy times a plain 1D table.
+    {
+        Frame f = NewFrame(64, 48);
+        SamplerState s = Aniso(Filter::Linear, MipFilter::Linear, Filter::Linear, 16.0f);
+        s.wrapS = s.wrapT = Wrap::Repeat;
+        f.textures.push_back(MakeTexture(TextureKind::Tex2D, 32, 32, s, ++seed));
+        f.textures.push_back(MakeTexture(TextureKind::Tex2D, 16, 1,
+                                         Sampler(Filter::Linear, MipFilter::None, Filter::Linear),
+                                         ++seed));
+        Pass p;
+        AddGroundPlane(&p, 64.0f / 48.0f, 8.0f, 0.5f, false);
+        p.numUnits = 2;
+        p.texture = {0, 1};
+        Rng rng{seed};
+        for (Vertex& v : p.vertices) v.coord[1] = glm::vec3(rng.Uniform(0, 1), 0.5f, 0);
+        f.passes.push_back(p);
+        out->push_back({"aniso_two_units", f});
+    }
+    // Two anisotropic units: a mirror sphere's cube map times a 2D texture addressed by the
+    // same reflection vector.
+    {
+        Frame f = NewFrame(80, 64);
+        f.textures.push_back(
+            Cube(32, Aniso(Filter::Linear, MipFilter::Linear, Filter::Linear, 8.0f), ++seed));
+        SamplerState s = Aniso(Filter::Linear, MipFilter::Nearest, Filter::Linear, 4.0f);
+        s.wrapS = s.wrapT = Wrap::MirroredRepeat;
+        f.textures.push_back(MakeTexture(TextureKind::Tex2D, 32, 16, s, ++seed));
+        Pass p;
+        AddSphere(&p, 20, 24, 80.0f / 64.0f, {0.3f, 0.6f, 3.0f}, {0, 0, 0}, 1.0f, 1.0f);
+        p.numUnits = 2;
+        p.texture = {0, 1};
+        for (Vertex& v : p.vertices) v.coord[1] = glm::vec3(v.coord[0].x * 2.0f, v.coord[0].y, 0);
+        f.passes.push_back(p);
+        out->push_back({"aniso_two_units_cube_2d", f});
+    }
+}
+
+// Cubes: mirror spheres with every filter (seamless and not), a mirror cylinder with each
+// max_anisotropy, a cube floor at grazing angles, LOD controls, cube edges and corners.
+void AnisoCubes(std::vector<NamedCase>* out) {
+    const Filter filters[2] = {Filter::Nearest, Filter::Linear};
+    const MipFilter mips[3] = {MipFilter::None, MipFilter::Nearest, MipFilter::Linear};
+    uint64_t seed = 12500;
+    for (bool seamless : {true, false})
+        for (Filter min : filters)
+            for (MipFilter mip : mips)
+                for (Filter mag : filters) {
+                    if (!seamless && mag != min) continue;
+                    Frame f = NewFrame(96, 80);
+                    f.textures.push_back(Cube(32, Aniso(min, mip, mag, 16.0f, seamless), ++seed));
+                    Pass p;
+                    AddSphere(&p, 24, 32, 96.0f / 80.0f, {0.3f, 0.8f, 3.2f}, {0, 0, 0}, 1.0f, 1.0f);
+                    f.passes.push_back(p);
+                    out->push_back({std::string("aniso_sphere_") + FilterName(min, mip) + "_mag_" +
+                                        MagName(mag) + (seamless ? "_seamless" : "_plain"),
+                                    f});
+                }
+    const float values[] = {2.0f, 4.0f, 8.0f, 16.0f, 3.7f};
+    const char* names[] = {"2", "4", "8", "16", "3_7"};
+    for (size_t i = 0; i < std::size(values); ++i)
+        for (bool seamless : {true, false}) {
+            if (!seamless && i != 3) continue;
+            Frame f = NewFrame(96, 64);
+            f.textures.push_back(Cube(
+                64, Aniso(Filter::Linear, MipFilter::Linear, Filter::Linear, values[i], seamless),
+                ++seed));
+            Pass p;
+            AddMirrorCylinder(&p, 48, 96.0f / 64.0f, {0.4f, 0.6f, 3.4f});
+            f.passes.push_back(p);
+            out->push_back(
+                {std::string("aniso_cylinder_") + names[i] + (seamless ? "_seamless" : "_plain"),
+                 f});
+        }
+    for (MipFilter mip : mips)
+        for (bool seamless : {true, false}) {
+            Frame f = NewFrame(80, 60);
+            const Filter mag = mip == MipFilter::None ? Filter::Nearest : Filter::Linear;
+            f.textures.push_back(
+                Cube(64, Aniso(Filter::Linear, mip, mag, 16.0f, seamless), ++seed));
+            Pass p;
+            AddGroundPlane(&p, 80.0f / 60.0f, 5.0f, 1.0f, true);
+            f.passes.push_back(p);
+            out->push_back({std::string("aniso_cube_floor_") + FilterName(Filter::Linear, mip) +
+                                (seamless ? "_seamless" : "_plain"),
+                            f});
+        }
+    struct Lod {
+        const char* name;
+        float bias, minLod, maxLod;
+    };
+    const Lod lods[] = {{"bias_plus0_6", 0.6f, -1000, 1000},
+                        {"bias_minus1_5", -1.5f, -1000, 1000},
+                        {"min_lod_2", 0.0f, 2.0f, 1000},
+                        {"max_lod_0_5", 0.0f, -1000, 0.5f},
+                        {"min_eq_max_1", 0.0f, 1.0f, 1.0f}};
+    for (const Lod& v : lods) {
+        Frame f = NewFrame(96, 72);
+        SamplerState s = Aniso(Filter::Linear, MipFilter::Linear, Filter::Linear, 8.0f);
+        s.lodBias = v.bias;
+        s.minLod = v.minLod;
+        s.maxLod = v.maxLod;
+        f.textures.push_back(Cube(64, s, ++seed));
+        Pass p;
+        AddSphere(&p, 20, 24, 96.0f / 72.0f, {0.2f, 0.5f, 4.5f}, {0, 0, 0}, 1.0f, 1.0f);
+        f.passes.push_back(p);
+        out->push_back({std::string("aniso_cube_lod_") + v.name, f});
+    }
+    // Random triangles around cube edges and corners on small cubes.
+    Rng rng{12900};
+    for (int k = 0; k < 4; ++k) {
+        const bool seamless = k % 2 == 0;
+        const int size = 2 << k;  // 2, 4, 8, 16
+        Frame f = NewFrame(64, 64);
+        f.textures.push_back(
+            Cube(size, Aniso(Filter::Linear, MipFilter::Linear, Filter::Linear, 16.0f, seamless),
+                 ++seed));
+        Pass p;
+        for (int t = 0; t < 24; ++t) {
+            glm::vec3 base(rng.Int(2) ? 1.0f : -1.0f, rng.Int(2) ? 1.0f : -1.0f,
+                           rng.Int(2) ? 1.0f : -1.0f);
+            if (rng.Int(2)) base[rng.Int(3)] = 0.0f;
+            for (int v = 0; v < 3; ++v) {
+                const glm::vec4 pos(rng.Uniform(-1.2f, 1.2f), rng.Uniform(-1.2f, 1.2f),
+                                    rng.Uniform(-0.5f, 0.5f), rng.Uniform(0.8f, 1.5f));
+                const glm::vec3 d =
+                    base + glm::vec3(rng.Uniform(-0.3f, 0.3f), rng.Uniform(-0.3f, 0.3f),
+                                     rng.Uniform(-0.3f, 0.3f));
+                p.vertices.push_back(V(pos, d, RandomColour(&rng)));
+            }
+        }
+        f.passes.push_back(p);
+        out->push_back(
+            {"aniso_edges_corners_n" + std::to_string(size) + (seamless ? "_seamless" : "_plain"),
+             f});
+    }
+}
+
+void Anisotropy(std::vector<NamedCase>* out) {
+    AnisoPlanes2D(out);
+    AnisoValues2D(out);
+    AnisoCubes(out);
+}
+
 }  // namespace
 
 std::vector<NamedCase> ConformanceCases() {
@@ -898,6 +1250,7 @@ std::vector<NamedCase> ConformanceCases() {
     TwoUnits(&out);
     OddSizes(&out);
     Depth(&out);
+    Anisotropy(&out);
     return out;
 }
 

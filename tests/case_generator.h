@@ -4,7 +4,9 @@
 // magnification, every filter and wrap mode, LOD bias and clamps, multi-pass blending, blend
 // and conversion probes, tie directions, extreme magnitudes, clipping, two-texture passes, and
 // depth buffers: every format and compare function, clears, writes, EQUAL multipass, near/far
-// with and without depth clamp, steep slopes, extreme w).
+// with and without depth clamp, steep slopes, extreme w; anisotropic filtering: 2D ground planes
+// to the horizon, mirror spheres and a cylinder, a cube floor, every filter, GL values 1..100,
+// LOD controls, non-square textures, receding walls, two units).
 // Each case is small (<= 128x128) so the whole corpus renders through llvmpipe in seconds.
 #pragma once
 

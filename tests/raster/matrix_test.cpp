@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // matrix_test.cpp — the rendering matrix against the renderer it describes:
 //  - Linear profile: render(x) = A x + offset to float rounding for random texels x;
-//    rendering a one-hot texel gives column j of A; <A x, y> = <x, A^T y>.
+//    rendering a one-hot texel gives column j of A; <A x, y> = <x, A^T y>; the same with
+//    anisotropic filtering (footprints of up to thousands of texels).
 //  - Llvmpipe profile: the 8-bit frame is within the stated bound of A x + offset:
 //    |255 y - 255 (A x + c)| <= P * (0.5 + 1.5 * [8-bit path]) + 1e-3 per channel, P = the
 //    fragments blended into the pixel since its last unblended write (RenderingMatrix::fragments),
@@ -73,6 +74,67 @@ TEST(RenderingMatrix, LinearProfileEqualsRender) {
         ++checked;
     }
     EXPECT_GT(checked, 40);
+}
+
+// Anisotropic footprints (aniso.h): dozens to thousands of texels per pixel, still exactly
+// linear: A x = the linear profile's frame, and a one-hot texel renders its column.
+TEST(RenderingMatrix, AnisotropicFootprintsStayLinear) {
+    RenderOptions opt;
+    opt.profile = Profile::Linear;
+    int checked = 0;
+    int64_t widest = 0;
+    for (const NamedCase& c : LinearFrames()) {
+        if (c.name.rfind("aniso_", 0) != 0) continue;
+        const PreparedFrame pf(c.frame);
+        const RenderingMatrix a = BuildRenderingMatrix(pf, opt);
+        for (int64_t r = 0; r < a.rows; ++r)
+            widest = std::max(
+                widest, a.rowPtr[static_cast<size_t>(r) + 1] - a.rowPtr[static_cast<size_t>(r)]);
+        const std::vector<double> y = Apply(a, TexelVector(c.frame));
+        const ImageF img = Render(pf, opt).imageF;
+        for (size_t i = 0; i < y.size(); ++i) {
+            const double tol = 1e-5 * std::max(1.0, std::fabs(y[i])) + 1e-6;
+            ASSERT_NEAR(img.rgba[i], y[i], tol) << c.name << " row " << i;
+        }
+        ++checked;
+    }
+    EXPECT_GE(checked, 60);
+    EXPECT_GT(widest, 1000);  // far beyond the 8 taps of trilinear filtering
+    // One-hot texels of an anisotropic mirror sphere (cube, seamless, trilinear, 16).
+    for (const NamedCase& c : test::ConformanceCases()) {
+        if (c.name != "aniso_sphere_linear_mipmap_linear_mag_linear_seamless") continue;
+        Frame f = c.frame;
+        f.clear = {0, 0, 0, 0};
+        for (auto& level : f.textures[0].levels) std::fill(level.begin(), level.end(), 0);
+        const RenderingMatrix a = BuildRenderingMatrix(PreparedFrame(f), opt);
+        for (uint32_t col : {a.col[a.col.size() / 5], a.col[a.col.size() / 2]}) {
+            Frame g = f;
+            uint32_t base = 0;
+            for (auto& level : g.textures[0].levels) {
+                const uint32_t n = static_cast<uint32_t>(level.size() / 4);
+                if (col / 4 < base + n) {
+                    level[col - 4 * base] = 255;
+                    break;
+                }
+                base += n;
+            }
+            const ImageF img = Render(PreparedFrame(g), opt).imageF;
+            int lit = 0;
+            for (int64_t r = 0; r < a.rows; ++r) {
+                double expect = 0;
+                for (int64_t k = a.rowPtr[static_cast<size_t>(r)];
+                     k < a.rowPtr[static_cast<size_t>(r) + 1]; ++k)
+                    if (a.col[static_cast<size_t>(k)] == col)
+                        expect = a.val[static_cast<size_t>(k)];
+                lit += expect > 0;
+                ASSERT_NEAR(img.rgba[static_cast<size_t>(r)], expect, 1e-6)
+                    << "column " << col << " row " << r;
+            }
+            EXPECT_GT(lit, 0);
+        }
+        ++checked;
+    }
+    EXPECT_GE(checked, 61);
 }
 
 TEST(RenderingMatrix, OneHotTexelRendersColumn) {

@@ -244,6 +244,25 @@ TEST(BadCase, Depth) {
     EXPECT_EQ(ErrorOf(j.dump()), "");
 }
 
+TEST(BadCase, MaxAnisotropy) {
+    ExpectError(ErrorWith("/cubemaps/0/max_anisotropy", 0.5),
+                "cubemaps[0].max_anisotropy: 0.5 below 1");
+    ExpectError(ErrorWith("/textures2d/0/max_anisotropy", -16),
+                "textures2d[0].max_anisotropy: -16 below 1");
+    ExpectError(ErrorWith("/textures2d/0/max_anisotropy", 0),
+                "textures2d[0].max_anisotropy: 0 below 1");
+    ExpectError(ErrorWith("/cubemaps/1/max_anisotropy", "nan"), "cubemaps[1].max_anisotropy: NaN");
+    ExpectError(ErrorWith("/cubemaps/0/max_anisotropy", "inf"),
+                "cubemaps[0].max_anisotropy: infinite");
+    ExpectError(ErrorWith("/cubemaps/0/max_anisotropy", true),
+                "cubemaps[0].max_anisotropy: expected a number");
+    ExpectError(ErrorWith("/cubemaps/0/max_anisotropy", 1e40),
+                "cubemaps[0].max_anisotropy: beyond float32 range");
+    // 1 (off), fractions and values above the driver's 16 are valid GL values.
+    for (const json& ok : {json(1), json(1.5), json(16), json(1000), json("0x1.8p+1")})
+        EXPECT_EQ(ErrorWith("/cubemaps/0/max_anisotropy", ok), "") << ok.dump();
+}
+
 TEST(BadCase, MinLodAboveMaxLodIsAllowed) {
     json j = BaseCase();
     j["cubemaps"][0]["min_lod"] = 5;

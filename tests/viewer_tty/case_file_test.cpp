@@ -108,6 +108,7 @@ raster::Texture RandomTexture(std::mt19937_64* rng, TextureKind kind) {
     if (kind == TextureKind::Cube) tex.sampler.seamless = (*rng)() % 2;
     tex.sampler.lodBias = RandomFloat(rng);
     tex.sampler.minLod = RandomFloat(rng);
+    if ((*rng)() % 2) tex.sampler.maxAnisotropy = 1.0f + float((*rng)() % 80) / 4.0f;
     tex.levels = GenerateTexels(kind, tex.width, tex.height, numLevels,
                                 {TexelGenKind::Random, (*rng)(), -1});
     return tex;
@@ -183,6 +184,21 @@ TEST(CaseFile, DepthKeysAndDefaults) {
                                   kPath);
     EXPECT_EQ(g.depth->clear, 0.3f);
     EXPECT_FALSE(ParseCaseJson(LegacyCase(), kPath).depth.has_value());
+}
+
+TEST(CaseFile, MaxAnisotropyKeyAndDefault) {
+    const std::string text = R"({"width": 2, "height": 2,
+      "cubemaps": [{"size": 1, "max_anisotropy": 16, "texels": {"gen": "gradient"}},
+                   {"size": 1, "texels": {"gen": "gradient"}}],
+      "textures2d": [{"width": 1, "height": 1, "max_anisotropy": "0x1.4p+1",
+                      "texels": {"gen": "gradient"}}]})";
+    const Frame f = ParseCaseJson(text, kPath);
+    EXPECT_EQ(f.textures[0].sampler.maxAnisotropy, 16.0f);
+    EXPECT_EQ(f.textures[1].sampler.maxAnisotropy, 1.0f);  // default: off
+    EXPECT_EQ(f.textures[2].sampler.maxAnisotropy, 2.5f);
+    const std::string written = CaseToJson(f);
+    EXPECT_NE(written.find("\"max_anisotropy\": 2.5"), std::string::npos);
+    EXPECT_TRUE(ParseCaseJson(written, kPath) == f);
 }
 
 TEST(CaseFile, RoundTripRandomFrames) {

@@ -72,6 +72,11 @@ raster::SamplerState ParseSampler(const json& obj, const std::string& where, Tex
     s.lodBias = FloatOr(obj, where, "lod_bias", s.lodBias);
     s.minLod = FloatOr(obj, where, "min_lod", s.minLod);
     s.maxLod = FloatOr(obj, where, "max_lod", s.maxLod);
+    if (const json* v = Find(obj, "max_anisotropy")) {
+        // glTexParameterf(GL_TEXTURE_MAX_ANISOTROPY) rejects values below 1.
+        s.maxAnisotropy = AsFloat(*v, Key(where, "max_anisotropy"));
+        if (!(s.maxAnisotropy >= 1.0f)) Fail(Key(where, "max_anisotropy"), v->dump() + " below 1");
+    }
     return s;
 }
 

@@ -54,6 +54,7 @@ Json TextureJson(const Texture& tex) {
     j["lod_bias"] = Exact(s.lodBias);
     j["min_lod"] = Exact(s.minLod);
     j["max_lod"] = Exact(s.maxLod);
+    j["max_anisotropy"] = Exact(s.maxAnisotropy);
     // Step 3: texels, one base64 string per (level, face).
     Json images = Json::array();
     for (int l = 0; l < tex.NumLevels(); ++l) {

@@ -91,6 +91,8 @@ void SetSamplerParameters(GLenum target, const Texture& tex) {
     glTexParameterf(target, GL_TEXTURE_LOD_BIAS, s.lodBias);
     glTexParameterf(target, GL_TEXTURE_MIN_LOD, s.minLod);
     glTexParameterf(target, GL_TEXTURE_MAX_LOD, s.maxLod);
+    // EXT/ARB_texture_filter_anisotropic (the same enum); llvmpipe exposes both.
+    glTexParameterf(target, GL_TEXTURE_MAX_ANISOTROPY, s.maxAnisotropy);
 }
 
 GLuint UploadTexture(const Texture& tex) {
