@@ -19,6 +19,7 @@
 #include "infer/pem_file.h"
 #include "pipeline/layout.h"
 #include "pipeline/pem_manifest.h"
+#include "raster/profile.h"
 #include "raster/render.h"
 #include "runtime/convex_hull.h"
 #include "runtime/lens_paths.h"
@@ -174,7 +175,8 @@ struct StackedRows {
 StackedRows StackRows(const std::vector<MapInput>& inputs, int w, int h,
                       const InferJobOptions& opt) {
     StackedRows s;
-    raster::RenderOptions ro;
+    // The profile's texel selection with exact weights (its LOD rule, no rounding).
+    raster::RenderOptions ro = raster::ProfileNamed(opt.profile).options;
     ro.profile = raster::Profile::Linear;
     ro.threads = opt.threads;
     for (size_t k = 0; k < inputs.size(); ++k) {
@@ -197,9 +199,9 @@ StackedRows StackRows(const std::vector<MapInput>& inputs, int w, int h,
 // The 8-bit copy of a map through the llvmpipe profile on the sample's own rows of the mask:
 // the error the hardware shows.
 double Rmse8(const infer::CubeMapF& m, const StackedRows& s, const infer::LinearSystem& sys,
-             int64_t frameRows, int threads) {
+             int64_t frameRows, const std::string& profile, int threads) {
     const raster::Texture tex8 = infer::ToTexture8(m, s.frame.textures[0].sampler);
-    raster::RenderOptions fo;
+    raster::RenderOptions fo = raster::ProfileNamed(profile).options;
     fo.threads = threads;
     double sum = 0.0, weight = 0.0;
     for (const auto& [ownFrame, first] : s.own) {
@@ -258,7 +260,7 @@ MapReport SolveMap(const std::vector<MapInput>& inputs, const InferJobOptions& o
     // Step 4: rmse_8bit (and the direct optimum's, when asked and small enough).
     const int64_t frameRows = int64_t{4} * tm.width * tm.height;
     const auto tRender = Clock::now();
-    rep.rmse8 = Rmse8(map, s, sys, frameRows, opt.threads);
+    rep.rmse8 = Rmse8(map, s, sys, frameRows, opt.profile, opt.threads);
     rep.renderSeconds = Since(tRender);
     if (opt.direct && sys.Cols() <= opt.directMaxCols) {
         const infer::SolveResult d =
@@ -266,7 +268,7 @@ MapReport SolveMap(const std::vector<MapInput>& inputs, const InferJobOptions& o
         rep.directSeconds = d.seconds;
         rep.directRmse8 =
             Rmse8(infer::CubeMapFromSolution(infer::FillUnobserved(sys, d.x), sys.layout), s, sys,
-                  frameRows, opt.threads);
+                  frameRows, opt.profile, opt.threads);
     }
     // Step 5: files.
     const auto tWrite = Clock::now();
@@ -475,6 +477,11 @@ std::vector<int> SamplesToInfer(const InferJobOptions& opt, const TraceManifest&
 
 InferJobResult RunInferJob(const InferJobOptions& opt) {
     const auto tStart = Clock::now();
+    try {
+        raster::ProfileNamed(opt.profile);
+    } catch (const std::invalid_argument& e) {
+        throw base::InputError("--profile " + opt.profile, e.what());
+    }
     if (opt.res < 1 || (opt.res & (opt.res - 1)) != 0 || opt.res > 4096)
         throw base::InputError("--res " + std::to_string(opt.res),
                                "expected a power of two in [1, 4096]");
@@ -515,7 +522,7 @@ void WriteInferOutputs(const InferJobOptions& o, const InferJobResult& r) {
     rec.maps = r.maps;
     rec.leftOut = r.leftOut;
     WriteInferJson(rec);
-    WritePemManifest(PemManifestFor(r.trace, o.outDir, o.res, o.hdr, o.views));
+    WritePemManifest(PemManifestFor(r.trace, o.outDir, o.res, o.hdr, o.views, o.profile));
 }
 
 }  // namespace pem::pipeline

@@ -49,10 +49,11 @@ struct InferJobOptions {
     std::string traceDir, outDir, exportDir;
     int res = kDefaultMapResolution;
     int threads = 1;
-    bool hdr = false;              // float radiance, bounds [0, inf)
-    double tessT = 5.0;            // tessellation t in subpixels (1 / spp pixels)
-    std::vector<int> views;        // empty: all
-    bool single = false;           // also the single-layer map (`single`, both terms)
+    std::string profile = "llvmpipe";  // the target hardware (raster/profile.h)
+    bool hdr = false;                  // float radiance, bounds [0, inf)
+    double tessT = 5.0;                // tessellation t in subpixels (1 / spp pixels)
+    std::vector<int> views;            // empty: all
+    bool single = false;               // also the single-layer map (`single`, both terms)
     int neighbours = 0;            // samples on each side in the simultaneous solve (hybrid §4.3)
     double neighbourWeight = 0.5;  // their rows' confidence factor
     bool direct = false;           // also solve with the direct oracle (when it fits)

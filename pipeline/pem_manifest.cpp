@@ -6,6 +6,7 @@
 #include "base/input_error.h"
 #include "pipeline/json_values.h"
 #include "pipeline/layout.h"
+#include "raster/profile.h"
 
 namespace pem::pipeline {
 namespace {
@@ -61,6 +62,7 @@ PemManifest ManifestFromJson(const json& j) {
     if (m.res < 1 || m.res > 4096 || (m.res & (m.res - 1)) != 0)
         throw std::runtime_error("res " + std::to_string(m.res) + " is not a power of two");
     m.profile = j.at("profile").get<std::string>();
+    raster::ProfileNamed(m.profile);  // throws for an unknown profile
     m.fullTreeDepth = j.at("full_tree_depth").get<int>();
     m.minWeight = j.at("min_weight").get<double>();
     m.fresnel = j.at("fresnel").get<std::string>();
@@ -79,7 +81,7 @@ PemManifest ManifestFromJson(const json& j) {
 }  // namespace
 
 PemManifest PemManifestFor(const TraceManifest& trace, const std::string& pemDir, int res, bool hdr,
-                           const std::vector<int>& inferred) {
+                           const std::vector<int>& inferred, const std::string& profile) {
     PemManifest m;
     m.dir = pemDir;
     const std::string scene = ResolveScene(trace.dir, trace.scene, trace.sceneGiven);
@@ -92,6 +94,7 @@ PemManifest PemManifestFor(const TraceManifest& trace, const std::string& pemDir
     m.spp = trace.spp;
     m.res = res;
     m.hdr = hdr;
+    m.profile = profile;
     m.fullTreeDepth = trace.fullTreeDepth;
     m.minWeight = trace.minWeight;
     m.fresnel = trace.fresnel;

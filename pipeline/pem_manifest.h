@@ -36,7 +36,8 @@ struct PemManifest {
 
 // The manifest of maps inferred at `inferred` (empty: every sample) from `trace` into pemDir.
 PemManifest PemManifestFor(const TraceManifest& trace, const std::string& pemDir, int res, bool hdr,
-                           const std::vector<int>& inferred);
+                           const std::vector<int>& inferred,
+                           const std::string& profile = "llvmpipe");
 
 void WritePemManifest(const PemManifest& manifest);  // dir/manifest.json
 PemManifest ReadPemManifest(const std::string& dir);

@@ -2,6 +2,8 @@
 // pem_set.cpp — PEM directories for drawing (pem_set.h).
 #include "pipeline/pem_set.h"
 
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <map>
 
@@ -62,6 +64,7 @@ runtime::MapSet LoadMapSet(const PemManifest& m) {
     set.groups = m.groups;
     set.spp = m.spp;
     set.res = m.res;
+    set.profile = m.profile;
     TraceManifest tracing;  // the tracer's options, as the trace read them
     tracing.fullTreeDepth = m.fullTreeDepth, tracing.minWeight = m.minWeight;
     tracing.fresnel = m.fresnel;
@@ -82,11 +85,38 @@ trace::Scene LoadPemScene(const PemManifest& m) {
     return trace::LoadScene(path);
 }
 
-std::unique_ptr<runtime::Renderer> OpenPemDirectory(const std::string& pemDir, int threads) {
+std::unique_ptr<runtime::Renderer> OpenPemDirectory(const std::string& pemDir, int threads,
+                                                    const std::string& embreeIsa) {
     const PemManifest m = ReadPemManifest(pemDir);
     trace::Scene scene = LoadPemScene(m);
     runtime::MapSet maps = LoadMapSet(m);
-    return std::make_unique<runtime::Renderer>(std::move(scene), std::move(maps), threads);
+    return std::make_unique<runtime::Renderer>(std::move(scene), std::move(maps), threads,
+                                               embreeIsa);
+}
+
+raster::Camera ViewCamera(const runtime::Renderer& renderer, const std::string& spec, int width,
+                             int height) {
+    raster::Camera c;
+    int index = 0;
+    double az = 0, el = 0, dist = 1;
+    char extra = 0;
+    if (spec == "camera") {
+        if (!renderer.scene().camera)
+            throw base::InputError("--view camera", "the scene has no camera");
+        c = trace::CameraForSize(*renderer.scene().camera, width, height);
+    } else if (std::sscanf(spec.c_str(), "sample:%d%c", &index, &extra) == 1) {
+        if (index < 0 || index >= static_cast<int>(renderer.maps().samples.size()))
+            throw base::InputError("--view " + spec, "no such viewpoint sample");
+        c = renderer.SampleCamera(index);
+    } else if (std::sscanf(spec.c_str(), "orbit:%lf:%lf:%lf%c", &az, &el, &dist, &extra) == 3 &&
+               std::isfinite(az) && std::isfinite(el) && std::isfinite(dist) && dist > 0.0) {
+        c = renderer.Orbit(az, el, dist);
+    } else {
+        throw base::InputError("--view " + spec, "expected sample:I, orbit:AZ:EL:DIST or camera");
+    }
+    c.width = width;
+    c.height = height;
+    return c;
 }
 
 }  // namespace pem::pipeline

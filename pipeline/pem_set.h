@@ -26,6 +26,14 @@ runtime::MapSet LoadMapSet(const PemManifest& manifest);
 // The scene the directory was made from.
 trace::Scene LoadPemScene(const PemManifest& manifest);
 
-std::unique_ptr<runtime::Renderer> OpenPemDirectory(const std::string& pemDir, int threads);
+std::unique_ptr<runtime::Renderer> OpenPemDirectory(const std::string& pemDir, int threads,
+                                                    const std::string& embreeIsa = "auto");
+
+// A view spec as a camera of the given size: sample:I (the camera sample I was traced with),
+// orbit:AZ:EL:DIST (degrees added to the first sample's azimuth and elevation about the lens
+// centre, DIST scales its distance) or camera (the scene's camera). base::InputError naming
+// `--view SPEC` otherwise.
+raster::Camera ViewCamera(const runtime::Renderer& renderer, const std::string& spec, int width,
+                          int height);
 
 }  // namespace pem::pipeline

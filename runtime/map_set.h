@@ -31,6 +31,7 @@ struct MapSet {
     int spp = 1;                          // the traced images' K×K sampling (t's unit)
     int res = 0;                          // face size of the maps
     trace::TraceOptions tracing;          // the ray tracer's options the maps were traced with
+    std::string profile = "llvmpipe";     // the hardware they were inferred for (raster/profile.h)
     std::function<const raster::Texture*(int view, int group, const std::string& name)> map;
 };
 

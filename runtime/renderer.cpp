@@ -13,6 +13,7 @@
 #include <map>
 
 #include "base/input_error.h"
+#include "raster/profile.h"
 #include "raster/render.h"
 #include "runtime/convex_hull.h"
 #include "runtime/lens_paths.h"
@@ -96,9 +97,13 @@ void CountPaths(const LensPaths& lp, FrameStats* stats) {
 // samples' passes share their setup), then added in the order they were built.
 class FrameBatch {
   public:
-    FrameBatch(const raster::Camera& camera, int threads, PreparedCache* prepared,
-               FrameStats* stats)
-        : camera_(camera), threads_(threads), prepared_(prepared), stats_(stats) {}
+    FrameBatch(const raster::Camera& camera, const raster::RenderOptions& hardware, int threads,
+               PreparedCache* prepared, FrameStats* stats)
+        : camera_(camera),
+          hardware_(hardware),
+          threads_(threads),
+          prepared_(prepared),
+          stats_(stats) {}
 
     // A frame drawing maps[k] (innermost first) on geometries[k] with coords[k]: the outermost
     // layer replaces, the inner ones go over it. sameAs >= 0: that frame drew the same passes
@@ -141,7 +146,7 @@ class FrameBatch {
             pf.emplace_back(frames_[f], std::move(ready_[f]));
         std::vector<const raster::PreparedFrame*> ptrs;
         for (const raster::PreparedFrame& p : pf) ptrs.push_back(&p);
-        raster::RenderOptions ro;
+        raster::RenderOptions ro = hardware_;
         ro.threads = threads_;
         const std::vector<raster::RenderResult> rr = raster::RenderFrames(ptrs, ro);
         for (size_t f = 0; f < rr.size(); ++f) Accumulate(rr[f].image8, weights_[f], pixels, acc);
@@ -157,6 +162,7 @@ class FrameBatch {
     }
 
     const raster::Camera& camera_;
+    raster::RenderOptions hardware_;
     int threads_;
     PreparedCache* prepared_;
     FrameStats* stats_;
@@ -242,6 +248,9 @@ struct Renderer::Impl {
         FrameStats* stats;
     };
     GroupGeometry Geometry(const GroupDraw& d, bool pemSplit);
+    raster::RenderOptions Hardware(const RenderSettings& s) const {
+        return raster::ProfileNamed(s.profile.empty() ? maps.profile : s.profile).options;
+    }
     std::vector<LayerUse> Uses(const GroupDraw& d, bool pemSplit) const;
     void DrawStatic(const GroupDraw& d, const GroupGeometry& gg);
     void DrawMaps(const GroupDraw& d, const GroupGeometry& gg, bool pemSplit);
@@ -299,7 +308,7 @@ void Renderer::Impl::DrawStatic(const GroupDraw& d, const GroupGeometry& gg) {
                                                   threads))
                  .first;
     }
-    FrameBatch batch(d.camera, d.s.threads, &prepared, d.stats);
+    FrameBatch batch(d.camera, Hardware(d.s), d.s.threads, &prepared, d.stats);
     for (int term = 0; term < maps.groups[static_cast<size_t>(d.group)].Terms(); ++term) {
         std::vector<glm::vec3> dirs(gg.exits[term].size());
         for (size_t v = 0; v < dirs.size(); ++v) dirs[v] = gg.exits[term][v].dir;
@@ -324,7 +333,7 @@ void Renderer::Impl::DrawMaps(const GroupDraw& d, const GroupGeometry& gg, bool 
         for (const LayerUse& u : uses)
             coords[term].push_back(ShellCoords(gg.exits[term], *u.shell, g.emOrigin, d.s.threads));
     d.stats->texgenSeconds += Since(t0);
-    FrameBatch batch(d.camera, d.s.threads, &prepared, d.stats);
+    FrameBatch batch(d.camera, Hardware(d.s), d.s.threads, &prepared, d.stats);
     int firstFrameOf[2] = {-1, -1};  // per term: the first sample's frame
     for (size_t k = 0; k < d.samples.size(); ++k) {
         for (int term = 0; term < g.Terms(); ++term) {
@@ -359,7 +368,8 @@ void Renderer::Impl::DrawGroup(const GroupDraw& d) {
         DrawMaps(d, gg, pemSplit);
 }
 
-Renderer::Renderer(trace::Scene scene, MapSet maps, int threads) : impl_(std::make_unique<Impl>()) {
+Renderer::Renderer(trace::Scene scene, MapSet maps, int threads, const std::string& embreeIsa)
+    : impl_(std::make_unique<Impl>()) {
     Impl& m = *impl_;
     m.maps = std::move(maps);
     m.scene = std::move(scene);
@@ -369,7 +379,7 @@ Renderer::Renderer(trace::Scene scene, MapSet maps, int threads) : impl_(std::ma
     if (m.maps.samples.empty() || m.maps.inferred.empty())
         throw base::InputError(m.maps.name, "no viewpoint samples");
     for (const LensGroupEm& g : m.maps.groups) m.singleShells.push_back(SingleLayerShell(g));
-    m.device = std::make_unique<trace::EmbreeDevice>(trace::EmbreeOptions{threads, "auto"});
+    m.device = std::make_unique<trace::EmbreeDevice>(trace::EmbreeOptions{threads, embreeIsa});
     m.embree = std::make_unique<trace::EmbreeScene>(*m.device, m.scene);
     m.tracer = std::make_unique<trace::Tracer>(m.scene, *m.embree, m.maps.tracing);
     m.lensCentre = trace::LensCentre(m.scene);
@@ -454,7 +464,7 @@ std::vector<std::vector<raster::ImageF>> Renderer::LayerImages(const raster::Cam
     const bool pemSplit = s.method == Method::Pem && g.pem;
     const GroupGeometry gg = m.Geometry(d, pemSplit);
     const std::vector<LayerUse> uses = m.Uses(d, pemSplit);
-    raster::RenderOptions ro;
+    raster::RenderOptions ro = m.Hardware(s);
     ro.profile = raster::Profile::Linear;
     ro.threads = s.threads;
     std::vector<std::vector<raster::ImageF>> out(static_cast<size_t>(g.Terms()));

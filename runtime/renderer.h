@@ -48,6 +48,7 @@ struct RenderSettings {
     int spp = 3;        // RayTraced: spp × spp samples per pixel
     int layers = 0;     // 0: all layers; 1: the outermost only
     int threads = 1;
+    std::string profile;  // the hardware that draws (raster/profile.h); "": the maps' profile
 };
 
 struct FrameStats {
@@ -74,7 +75,8 @@ struct RenderedFrame {
 
 class Renderer {
   public:
-    Renderer(trace::Scene scene, MapSet maps, int threads);
+    // embreeIsa: trace/embree_scene.h's EmbreeOptions::isa ("sse2" where frames feed a golden).
+    Renderer(trace::Scene scene, MapSet maps, int threads, const std::string& embreeIsa = "auto");
     ~Renderer();
     Renderer(const Renderer&) = delete;
     Renderer& operator=(const Renderer&) = delete;

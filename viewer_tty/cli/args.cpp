@@ -6,6 +6,11 @@
 #include <cstdio>
 
 #include "base/input_error.h"
+#include "raster/profile.h"
+
+#ifndef PEM_VERSION
+#define PEM_VERSION "unknown"
+#endif
 
 namespace pem::cli {
 
@@ -26,29 +31,27 @@ runtime::Method ParseMethod(const std::string& name) {
     throw base::InputError("--method " + name, "expected hybrid, pem, static or traced");
 }
 
-raster::Camera ParseViewSpec(const runtime::Renderer& renderer, const std::string& spec, int width,
-                             int height) {
-    raster::Camera c;
-    int index = 0;
-    double az = 0, el = 0, dist = 1;
-    char extra = 0;
-    if (spec == "camera") {
-        if (!renderer.scene().camera)
-            throw base::InputError("--view camera", "the scene has no camera");
-        c = trace::CameraForSize(*renderer.scene().camera, width, height);
-    } else if (std::sscanf(spec.c_str(), "sample:%d%c", &index, &extra) == 1) {
-        if (index < 0 || index >= static_cast<int>(renderer.maps().samples.size()))
-            throw base::InputError("--view " + spec, "no such viewpoint sample");
-        c = renderer.SampleCamera(index);
-    } else if (std::sscanf(spec.c_str(), "orbit:%lf:%lf:%lf%c", &az, &el, &dist, &extra) == 3 &&
-               std::isfinite(az) && std::isfinite(el) && std::isfinite(dist) && dist > 0.0) {
-        c = renderer.Orbit(az, el, dist);
-    } else {
-        throw base::InputError("--view " + spec, "expected sample:I, orbit:AZ:EL:DIST or camera");
-    }
-    c.width = width;
-    c.height = height;
-    return c;
+std::string PemrefVersion() {
+    return PEM_VERSION;
+}
+
+std::string VersionText() {
+    std::string text = "pemref " + PemrefVersion() + "\nprofiles:";
+    for (const raster::ProfileInfo& p : raster::Profiles())
+        text += std::string("\n  ") + p.name + ": " + p.model;
+    return text;
+}
+
+void AddProfileOption(CLI::App* sub, std::string* profile) {
+    sub->add_option("--profile", *profile, "hardware profile: " + raster::ProfileNames())
+        ->check([](const std::string& name) -> std::string {
+            try {
+                raster::ProfileNamed(name);
+                return "";
+            } catch (const std::invalid_argument& e) {
+                return e.what();
+            }
+        });
 }
 
 std::function<void(const std::string&, double)> ProgressTo(tty::ProgressLine* line) {

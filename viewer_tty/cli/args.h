@@ -1,13 +1,14 @@
 // SPDX-License-Identifier: MIT
-// args.h — option values the commands share: image sizes, viewpoints and methods, and the
-// progress line every long job shows.
+// args.h — option values the commands share: image sizes, methods, profiles, the version, and
+// the progress line every long job shows (view specs: pipeline/pem_set.h ViewCamera).
 //
 //   auto [w, h] = ParseSize("640x480");
-//   raster::Camera c = ParseViewSpec(renderer, "orbit:5:10:1", w, h);
+//   runtime::Method m = ParseMethod("hybrid");
 //
 // Errors: base::InputError naming the option and what it expects.
 #pragma once
 
+#include <CLI/CLI.hpp>
 #include <functional>
 #include <string>
 #include <utility>
@@ -24,11 +25,13 @@ std::pair<int, int> ParseSize(const std::string& text);
 // hybrid | pem | static | traced.
 runtime::Method ParseMethod(const std::string& name);
 
-// sample:I (the camera sample I was traced with), orbit:AZ:EL:DIST (degrees added to the first
-// sample's azimuth and elevation about the lens centre, DIST scales its distance) or camera
-// (the scene's camera), at the given size.
-raster::Camera ParseViewSpec(const runtime::Renderer& renderer, const std::string& spec, int width,
-                             int height);
+// --profile NAME: one of raster/profile.h's profiles (the value is checked).
+void AddProfileOption(CLI::App* sub, std::string* profile);
+
+// pemref's version ("0.1.0", the project's CMake version).
+std::string PemrefVersion();
+// It and every profile's model (`pemref --version`).
+std::string VersionText();
 
 // A job's progress callback that draws `line` (nothing when the line is disabled).
 std::function<void(const std::string&, double)> ProgressTo(tty::ProgressLine* line);

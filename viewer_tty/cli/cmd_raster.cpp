@@ -13,15 +13,16 @@
 #include "base/matrix_market.h"
 #include "base/png_io.h"
 #include "base/sha256.h"
+#include "raster/profile.h"
 #include "raster/render.h"
+#include "viewer_tty/cli/args.h"
 #include "viewer_tty/conformance/case_file.h"
 
 namespace pem::cli {
 namespace {
 
 struct RasterArgs {
-    std::string casePath, pngPath, matrixPath, profile = "llvmpipe", rounding = "rne";
-    std::string cubeLod = "llvmpipe";
+    std::string casePath, pngPath, matrixPath, profile = "llvmpipe", rounding, cubeLod;
     int threads = 1, repeat = 0;
 };
 
@@ -31,11 +32,12 @@ RasterArgs& Args() {
 }
 
 raster::RenderOptions ParseOptions(const RasterArgs& a) {
-    raster::RenderOptions o;
-    o.profile = a.profile == "linear" ? raster::Profile::Linear : raster::Profile::Llvmpipe;
-    o.rounding =
-        a.rounding == "d3d" ? raster::UnormRounding::HalfUp : raster::UnormRounding::HalfEven;
-    o.cubeLod = a.cubeLod == "exact" ? raster::CubeLod::Exact : raster::CubeLod::Llvmpipe;
+    raster::RenderOptions o = raster::ProfileNamed(a.profile).options;
+    if (!a.rounding.empty())  // the profile's rule, unless asked otherwise
+        o.rounding =
+            a.rounding == "d3d" ? raster::UnormRounding::HalfUp : raster::UnormRounding::HalfEven;
+    if (!a.cubeLod.empty())
+        o.cubeLod = a.cubeLod == "exact" ? raster::CubeLod::Exact : raster::CubeLod::Llvmpipe;
     o.threads = a.threads;
     return o;
 }
@@ -116,8 +118,7 @@ void AddRasterCommand(CLI::App& app) {
     CLI::App* sub = app.add_subcommand("raster", "render a raster case file (gl_ref_case/1)");
     sub->add_option("case", a.casePath, "case file (JSON)")->required();
     sub->add_option("-o,--output", a.pngPath, "write the RGBA8 frame as PNG");
-    sub->add_option("--profile", a.profile, "hardware profile")
-        ->check(CLI::IsMember({"llvmpipe", "linear"}));
+    AddProfileOption(sub, &a.profile);
     sub->add_option("--rounding", a.rounding, "float->unorm8 rule: rne (GL) or d3d (+0.5, floor)")
         ->check(CLI::IsMember({"rne", "d3d"}));
     sub->add_option("--cube-lod", a.cubeLod, "cube LOD: llvmpipe (fast log2) or exact (GL spec)")

@@ -22,7 +22,7 @@ namespace {
 using nlohmann::json;
 
 struct RenderArgs {
-    std::string pemDir, view = "sample:0", size, out, method = "hybrid", stats;
+    std::string pemDir, view = "sample:0", size, out, method = "hybrid", stats, profile;
     double t = 5.0;
     int spp = 3, subpixels = 0, layers = 0, threads = 1, repeat = 0;
     float exposure = 1.0f;
@@ -57,6 +57,7 @@ void AddRenderCommand(CLI::App& app) {
     sub->add_option("--layers", a.layers, "0: all layers, 1: the outermost only")
         ->check(CLI::Range(0, 1));
     sub->add_option("--threads", a.threads, "worker threads")->check(CLI::Range(1, 256));
+    AddProfileOption(sub, &a.profile);
     sub->add_option("--stats", a.stats, "per-frame statistics (JSON)");
     sub->add_option("--exposure", a.exposure, "PNG exposure")->check(CLI::Range(0.0, 1e6));
     sub->add_option("--repeat", a.repeat, "render N more times and report the median times")
@@ -147,11 +148,12 @@ int RunRenderCommand() {
     const raster::Camera first = renderer->SampleCamera(0);
     int w = first.width, h = first.height;
     if (!a.size.empty()) std::tie(w, h) = ParseSize(a.size);
-    const raster::Camera camera = ParseViewSpec(*renderer, a.view, w, h);
+    const raster::Camera camera = pipeline::ViewCamera(*renderer, a.view, w, h);
     runtime::RenderSettings s;
     s.method = ParseMethod(a.method);
     s.t = a.t, s.spp = a.spp, s.subpixels = a.subpixels, s.layers = a.layers;
     s.threads = a.threads;
+    s.profile = a.profile;
     runtime::RenderedFrame f = renderer->Render(camera, s);
     if (a.repeat > 0) MedianTimes(*renderer, camera, s, a.repeat, &f.stats);
     if (EndsWith(a.out, ".exr"))

@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <exception>
 
+#include "viewer_tty/cli/args.h"
 #include "viewer_tty/cli/cmd_bake.h"
 #include "viewer_tty/cli/cmd_demo.h"
 #include "viewer_tty/cli/cmd_infer.h"
@@ -25,6 +26,7 @@ int main(int argc, char** argv) {
     mallopt(M_TRIM_THRESHOLD, 256 << 20);
     CLI::App app{"pemref — parameterized, layered environment maps, CPU reference"};
     app.require_subcommand(1);
+    app.set_version_flag("--version", pem::cli::VersionText());
     pem::cli::AddRasterCommand(app);
     pem::cli::AddTraceCommand(app);
     pem::cli::AddInferCommand(app);
@@ -37,6 +39,8 @@ int main(int argc, char** argv) {
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForVersion& e) {
         return app.exit(e);
     } catch (const CLI::ParseError& e) {
         std::fprintf(stderr, "pemref: %s (see pemref --help)\n", e.what());
