@@ -166,8 +166,8 @@ std::vector<std::vector<raster::ImageF>> ExactLookupLayers(
             for (uint32_t p : sp.pixels)
                 for (size_t c = 0; c < 4; ++c) {
                     const size_t row = 4 * (size_t(t) * wh + p) + c;
-                    target.b[row] = targets[size_t(t)][l].data[4 * p + c];
-                    target.confidence[row] = coverage.data[4 * size_t(p) + 3];
+                    target.b[row] = double(targets[size_t(t)][l].data[4 * p + c]);
+                    target.confidence[row] = double(coverage.data[4 * size_t(p) + 3]);
                 }
         const std::vector<double> ax = FitAndShow(a, frame, target, threads);
         for (int t = 0; t < g.Terms(); ++t) {
