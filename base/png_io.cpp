@@ -58,7 +58,54 @@ void EncodeRows(FILE* file, const Image8& image, std::string* error) {
     png_destroy_write_struct(&png, &info);
 }
 
+// Reads the PNG stream of `file` into *image; on failure sets *error (as EncodeRows). Every
+// object the decode changes belongs to the caller, so none is an automatic object of the
+// function that calls setjmp.
+void DecodeRows(FILE* file, Image8* image, std::vector<png_bytep>* rows, std::string* error) {
+    png_structp png =
+        png_create_read_struct(PNG_LIBPNG_VER_STRING, error, OnPngError, OnPngWarning);
+    png_infop info = png ? png_create_info_struct(png) : nullptr;
+    if (!png || !info) {
+        png_destroy_read_struct(&png, nullptr, nullptr);
+        *error = "libpng initialisation failed";
+        return;
+    }
+    if (setjmp(png_jmpbuf(png)) == 0) {
+        png_init_io(png, file);
+        png_set_user_limits(png, 16384, 16384);
+        png_read_info(png, info);
+        png_set_expand(png);  // palette, grey < 8 bits, tRNS → 8-bit channels with alpha
+        png_set_strip_16(png);
+        png_set_gray_to_rgb(png);
+        png_set_add_alpha(png, 0xff, PNG_FILLER_AFTER);
+        png_read_update_info(png, info);
+        image->width = static_cast<int>(png_get_image_width(png, info));
+        image->height = static_cast<int>(png_get_image_height(png, info));
+        image->rgba.assign(size_t(image->width) * size_t(image->height) * 4, 0);
+        rows->resize(size_t(image->height));
+        for (size_t y = 0; y < rows->size(); ++y)
+            (*rows)[y] = image->rgba.data() + y * size_t(image->width) * 4;
+        png_read_image(png, rows->data());
+        png_read_end(png, nullptr);
+    } else if (error->empty()) {
+        *error = "libpng error";
+    }
+    png_destroy_read_struct(&png, &info, nullptr);
+}
+
 }  // namespace
+
+Image8 ReadPng(const std::string& path) {
+    FILE* file = std::fopen(path.c_str(), "rb");
+    if (!file) throw InputError(path, std::string("cannot open: ") + std::strerror(errno));
+    Image8 image;
+    std::vector<png_bytep> rows;
+    std::string error;
+    DecodeRows(file, &image, &rows, &error);
+    std::fclose(file);
+    if (!error.empty()) throw InputError(path, "not a readable PNG: " + error);
+    return image;
+}
 
 void WritePng(const std::string& path, const Image8& image) {
     // Step 1: validate the image.

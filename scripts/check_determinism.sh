@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
-# Builds pemref three ways (gcc -O0, gcc -O3, clang -O2) and checks that every conformance case
-# and the benchmark frame hash the same in each build, with 1 and 2 threads, and with the
-# baseline fragment stage forced (PEM_ISA=base). Prints "N passed, M failed".
+# Builds pemref three ways (gcc -O0, gcc -O3, clang -O2) and checks that goldens come out the
+# same in each build, with 1 and 2 threads, and with the baseline fragment stage forced
+# (PEM_ISA=base): the whole conformance corpus and the benchmark frame (hashes), and the example
+# golden suite (raster cases, a traced and a static-EM scene: golden.json and every PNG, byte for
+# byte). Prints "determinism: N passed, M failed" (N: tests compared in every run).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$(pwd)
@@ -24,24 +26,47 @@ gen="${BUILD_DIR:-build}/tests/gen_cases"
 cases="$out/cases"
 rm -rf "$cases" && "$gen" "$cases" >/dev/null
 
-passed=0; failed=0
-for c in "$cases"/*.json; do
-  ref=""
-  for dir in "$out"/gcc-O0 "$out"/gcc-O3 "$out"/clang-O2; do
-    [ -x "$dir/bin/pemref" ] || continue
-    for variant in "--threads 1" "--threads 2" "--threads 2 base"; do
-      args=${variant% base}
-      if [[ $variant == *base ]]; then
-        h=$(PEM_ISA=base "$dir/bin/pemref" raster "$c" $args)
-      else
-        h=$("$dir/bin/pemref" raster "$c" $args)
-      fi
-      if [ -z "$ref" ]; then ref=$h; elif [ "$h" != "$ref" ]; then
-        echo "MISMATCH $(basename "$c") $(basename "$dir") $variant: $h vs $ref"; failed=$((failed+1)); continue 2
-      fi
-    done
+# Every build × (1 thread, 2 threads, 2 threads baseline ISA) generates both golden sets.
+runs=()
+for dir in "$out"/gcc-O0 "$out"/gcc-O3 "$out"/clang-O2; do
+  [ -x "$dir/bin/pemref" ] || continue
+  for variant in t1 t2 t2-base; do
+    g="$out/golden/$(basename "$dir")-$variant"
+    rm -rf "$g"
+    isa=""; [ "$variant" = t2-base ] && isa=base
+    threads=${variant#t}; threads=${threads%-base}
+    PEM_ISA=$isa "$dir/bin/pemref" golden generate "$cases" --out "$g/corpus" --hashes-only \
+      --threads "$threads" >/dev/null
+    PEM_ISA=$isa "$dir/bin/pemref" golden generate tests/data/golden_suite --out "$g/suite" \
+      --threads "$threads" >/dev/null
+    runs+=("$g")
   done
-  passed=$((passed+1))
 done
-echo "determinism: $passed passed, $failed failed"
-[ "$failed" -eq 0 ]
+
+# Compare every run with the first: per test (corpus: its pixels' hash; suite: its PNG's bytes).
+/usr/bin/python3 - "${runs[@]}" <<'EOF'
+import json, sys, filecmp, os
+runs = sys.argv[1:]
+def tests(run, part):
+    return {t["name"]: t for t in json.load(open(os.path.join(run, part, "golden.json")))["tests"]}
+passed = failed = 0
+for part in ("corpus", "suite"):
+    ref = tests(runs[0], part)
+    for name, t in sorted(ref.items()):
+        bad = []
+        for run in runs[1:]:
+            other = tests(run, part).get(name)
+            same = other is not None and other["sha256"] == t["sha256"]
+            if same and t["png"]:
+                same = filecmp.cmp(os.path.join(runs[0], part, t["png"]),
+                                   os.path.join(run, part, other["png"]), shallow=False)
+            if not same:
+                bad.append(os.path.basename(run))
+        if bad:
+            print(f"MISMATCH {part}/{name}: {', '.join(bad)} differ from {os.path.basename(runs[0])}")
+            failed += 1
+        else:
+            passed += 1
+print(f"determinism: {passed} passed, {failed} failed ({len(runs)} runs each)")
+sys.exit(1 if failed else 0)
+EOF

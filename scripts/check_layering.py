@@ -3,7 +3,7 @@
 own code points down the layers, so no folder cycle can form:
 
     base → raster → trace → infer, runtime (siblings) → pipeline → viewer_tty
-    viewer_tty rooms: tty, conformance, stability (each on its own) → report → cli
+    viewer_tty rooms: tty, conformance, stability (each on its own) → report, golden → cli
 
 Each folder may include (and link) only the folders listed for it in ALLOWED; Embree only in
 trace/, Eigen only in infer/. tests/ and bench/ sit on top and may use anything. Prints one line
@@ -22,16 +22,18 @@ ALLOWED = {
     "viewer_tty/stability": {"base", "raster", "trace", "infer", "viewer_tty/stability"},
     "viewer_tty/report": {"base", "raster", "trace", "infer", "runtime", "pipeline",
                           "viewer_tty/stability", "viewer_tty/report"},
+    "viewer_tty/golden": {"base", "raster", "trace", "infer", "runtime", "pipeline",
+                          "viewer_tty/conformance", "viewer_tty/golden"},
     "viewer_tty/cli": {"base", "raster", "trace", "infer", "runtime", "pipeline",
                        "viewer_tty/tty", "viewer_tty/conformance", "viewer_tty/stability",
-                       "viewer_tty/report", "viewer_tty/cli"},
+                       "viewer_tty/report", "viewer_tty/golden", "viewer_tty/cli"},
 }
 # Library targets and the folder that owns each.
 TARGETS = {"pem_base": "base", "pem_raster": "raster", "pem_trace": "trace",
            "pem_infer": "infer", "pem_runtime": "runtime", "pem_pipeline": "pipeline",
            "pem_tty": "viewer_tty/tty", "pem_conformance": "viewer_tty/conformance",
            "pem_gl": "viewer_tty/conformance", "pem_stability": "viewer_tty/stability",
-           "pem_report": "viewer_tty/report"}
+           "pem_report": "viewer_tty/report", "pem_golden": "viewer_tty/golden"}
 THIRD_PARTY = [(re.compile(r"#\s*include\s*<embree"), "trace", "Embree"),
                (re.compile(r"#\s*include\s*<Eigen"), "infer", "Eigen")]
 INCLUDE = re.compile(r'^\s*#\s*include\s*"([^"]+)"')

@@ -89,6 +89,18 @@ TEST(Png, BadPathThrowsWithPath) {
     }
 }
 
+TEST(Png, ReadsBackWhatWasWrittenAndRefusesGarbage) {
+    const auto dir = FreshDir("png_read");
+    Image8 image{5, 3, {}};
+    for (int k = 0; k < 5 * 3 * 4; ++k) image.rgba.push_back(uint8_t(k * 17 % 251));
+    WritePng((dir / "a.png").string(), image);
+    EXPECT_EQ(ReadPng((dir / "a.png").string()), image);
+    std::ofstream(dir / "bad.png") << "\x89PNG\r\n\x1a\n garbage";
+    EXPECT_THROW(ReadPng((dir / "bad.png").string()), InputError);
+    EXPECT_THROW(ReadPng((dir / "none.png").string()), InputError);
+    std::filesystem::remove_all(dir);
+}
+
 // Atomic files ---------------------------------------------------------------------------------
 
 TEST(AtomicFile, WriterThatThrowsLeavesNothing) {

@@ -43,6 +43,20 @@ cmp "$work/copied/moved.png" "$work/a/here.png" || { echo "FAIL: a copied bake r
 "$pemref" bake "$data/scenes/mirror_sphere.gltf" --out "$work/s" --views circle:2:10 \
     --size 96x72 --spp 2 --res 16 --threads 2 --quiet
 "$pemref" report "$work/s" --threads 2 --reference-spp 2 --no-stability --quiet
+# Golden images of its PEM directory: the same bytes with 1 and 2 threads, and check passes.
+mkdir -p "$work/gs"
+cat > "$work/gs/suite.json" <<'EOF'
+{"format": "pemref_golden_suite", "version": 1, "tests": [
+ {"name": "hybrid", "pem": "../s/pem", "view": "sample:1", "method": "hybrid"},
+ {"name": "pem", "pem": "../s/pem", "view": "orbit:5:0:1", "method": "pem", "size": [64, 48]},
+ {"name": "traced", "pem": "../s/pem", "view": "sample:0", "method": "traced", "spp": 2}]}
+EOF
+"$pemref" golden generate "$work/gs" --out "$work/g1" --threads 1 >/dev/null
+"$pemref" golden generate "$work/gs" --out "$work/g2" --threads 2 >/dev/null
+cmp "$work/g1/golden.json" "$work/g2/golden.json" ||
+  { echo "FAIL: PEM goldens differ between 1 and 2 threads"; exit 1; }
+"$pemref" golden check "$work/gs" "$work/g1" --threads 2 >/dev/null ||
+  { echo "FAIL: golden check of PEM goldens"; exit 1; }
 # Step 3: the PEM paper's scene: a non-convex mirror teapot, whose local layer (its reflections
 # of itself: knob, handle, spout) is inferred and drawn.
 "$pemref" bake "$data/scenes/pem_mirror_teapot.gltf" --out "$work/t" --views circle:2:10 \

@@ -11,6 +11,7 @@
 #include "viewer_tty/cli/args.h"
 #include "viewer_tty/cli/cmd_bake.h"
 #include "viewer_tty/cli/cmd_demo.h"
+#include "viewer_tty/cli/cmd_golden.h"
 #include "viewer_tty/cli/cmd_infer.h"
 #include "viewer_tty/cli/cmd_raster.h"
 #include "viewer_tty/cli/cmd_render.h"
@@ -36,6 +37,7 @@ int main(int argc, char** argv) {
     pem::cli::AddReportCommand(app);
     pem::cli::AddDemoCommand(app);
     pem::cli::AddStabilityCommand(app);
+    pem::cli::AddGoldenCommand(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {
@@ -56,6 +58,7 @@ int main(int argc, char** argv) {
         if (app.got_subcommand("report")) return pem::cli::RunReportCommand();
         if (app.got_subcommand("demo")) return pem::cli::RunDemoCommand();
         if (app.got_subcommand("stability")) return pem::cli::RunStabilityCommand();
+        if (app.got_subcommand("golden")) return pem::cli::RunGoldenCommand(app);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "pemref: %s\n", e.what());
         return 1;
