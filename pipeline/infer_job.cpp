@@ -125,7 +125,8 @@ void AppendRows(raster::RenderingMatrix* a, const raster::RenderingMatrix& b) {
     a->rows += b.rows;
 }
 
-raster::Frame UnknownFrame(int width, int height, int res, const raster::Pass& pass) {
+raster::Frame UnknownFrame(int width, int height, int res, const raster::SamplerState& sampler,
+                           const raster::Pass& pass) {
     raster::Frame frame;
     frame.width = width;
     frame.height = height;
@@ -134,6 +135,7 @@ raster::Frame UnknownFrame(int width, int height, int res, const raster::Pass& p
     raster::Texture tex;
     tex.kind = raster::TextureKind::Cube;
     tex.width = tex.height = res;
+    tex.sampler = sampler;
     for (int l = 0; (res >> l) >= 1; ++l)
         tex.levels.emplace_back(static_cast<size_t>(6 * (res >> l) * (res >> l) * 4), 0);
     frame.textures.push_back(std::move(tex));
@@ -176,11 +178,11 @@ StackedRows StackRows(const std::vector<MapInput>& inputs, int w, int h,
                       const InferJobOptions& opt) {
     StackedRows s;
     // The profile's texel selection with exact weights (its LOD rule, no rounding).
-    raster::RenderOptions ro = raster::ProfileNamed(opt.profile).options;
+    raster::RenderOptions ro = raster::ProfileNamed(opt.hardware.profile).options;
     ro.profile = raster::Profile::Linear;
     ro.threads = opt.threads;
     for (size_t k = 0; k < inputs.size(); ++k) {
-        raster::Frame f = UnknownFrame(w, h, opt.res, inputs[k].pass);
+        raster::Frame f = UnknownFrame(w, h, opt.res, opt.hardware.Sampler(), inputs[k].pass);
         raster::RenderingMatrix a = raster::BuildRenderingMatrix(raster::PreparedFrame(f), ro);
         if (k == 0) {
             s.a = std::move(a);
@@ -260,7 +262,7 @@ MapReport SolveMap(const std::vector<MapInput>& inputs, const InferJobOptions& o
     // Step 4: rmse_8bit (and the direct optimum's, when asked and small enough).
     const int64_t frameRows = int64_t{4} * tm.width * tm.height;
     const auto tRender = Clock::now();
-    rep.rmse8 = Rmse8(map, s, sys, frameRows, opt.profile, opt.threads);
+    rep.rmse8 = Rmse8(map, s, sys, frameRows, opt.hardware.profile, opt.threads);
     rep.renderSeconds = Since(tRender);
     if (opt.direct && sys.Cols() <= opt.directMaxCols) {
         const infer::SolveResult d =
@@ -268,7 +270,7 @@ MapReport SolveMap(const std::vector<MapInput>& inputs, const InferJobOptions& o
         rep.directSeconds = d.seconds;
         rep.directRmse8 =
             Rmse8(infer::CubeMapFromSolution(infer::FillUnobserved(sys, d.x), sys.layout), s, sys,
-                  frameRows, opt.profile, opt.threads);
+                  frameRows, opt.hardware.profile, opt.threads);
     }
     // Step 5: files.
     const auto tWrite = Clock::now();
@@ -478,9 +480,9 @@ std::vector<int> SamplesToInfer(const InferJobOptions& opt, const TraceManifest&
 InferJobResult RunInferJob(const InferJobOptions& opt) {
     const auto tStart = Clock::now();
     try {
-        raster::ProfileNamed(opt.profile);
+        raster::ProfileNamed(opt.hardware.profile);
     } catch (const std::invalid_argument& e) {
-        throw base::InputError("--profile " + opt.profile, e.what());
+        throw base::InputError("--profile " + opt.hardware.profile, e.what());
     }
     if (opt.res < 1 || (opt.res & (opt.res - 1)) != 0 || opt.res > 4096)
         throw base::InputError("--res " + std::to_string(opt.res),
@@ -522,7 +524,7 @@ void WriteInferOutputs(const InferJobOptions& o, const InferJobResult& r) {
     rec.maps = r.maps;
     rec.leftOut = r.leftOut;
     WriteInferJson(rec);
-    WritePemManifest(PemManifestFor(r.trace, o.outDir, o.res, o.hdr, o.views, o.profile));
+    WritePemManifest(PemManifestFor(r.trace, o.outDir, o.res, o.hdr, o.views, o.hardware));
 }
 
 }  // namespace pem::pipeline

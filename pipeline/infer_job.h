@@ -35,6 +35,7 @@
 #include "infer/solver.h"
 #include "pipeline/infer_report.h"
 #include "pipeline/trace_manifest.h"
+#include "runtime/map_set.h"
 
 namespace pem::pipeline {
 
@@ -49,14 +50,14 @@ struct InferJobOptions {
     std::string traceDir, outDir, exportDir;
     int res = kDefaultMapResolution;
     int threads = 1;
-    std::string profile = "llvmpipe";  // the target hardware (raster/profile.h)
-    bool hdr = false;                  // float radiance, bounds [0, inf)
-    double tessT = 5.0;                // tessellation t in subpixels (1 / spp pixels)
-    std::vector<int> views;            // empty: all
-    bool single = false;               // also the single-layer map (`single`, both terms)
-    int neighbours = 0;            // samples on each side in the simultaneous solve (hybrid §4.3)
-    double neighbourWeight = 0.5;  // their rows' confidence factor
-    bool direct = false;           // also solve with the direct oracle (when it fits)
+    runtime::MapHardware hardware;  // the target hardware: profile and the maps' sampler
+    bool hdr = false;               // float radiance, bounds [0, inf)
+    double tessT = 5.0;             // tessellation t in subpixels (1 / spp pixels)
+    std::vector<int> views;         // empty: all
+    bool single = false;            // also the single-layer map (`single`, both terms)
+    int neighbours = 0;             // samples on each side in the simultaneous solve (hybrid §4.3)
+    double neighbourWeight = 0.5;   // their rows' confidence factor
+    bool direct = false;            // also solve with the direct oracle (when it fits)
     int64_t directMaxCols = 400000;  // unknowns (4 per texel) the direct solver may take
     infer::RegularizerWeights weights;
     infer::SystemOptions system{2};

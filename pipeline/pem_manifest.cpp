@@ -27,7 +27,8 @@ json ManifestJson(const PemManifest& m) {
             {"size", {m.width, m.height}},
             {"spp", m.spp},
             {"res", m.res},
-            {"profile", m.profile},
+            {"profile", m.hardware.profile},
+            {"max_anisotropy", m.hardware.maxAnisotropy},
             {"full_tree_depth", m.fullTreeDepth},
             {"min_weight", m.minWeight},
             {"fresnel", m.fresnel},
@@ -61,8 +62,11 @@ PemManifest ManifestFromJson(const json& j) {
         throw std::runtime_error("bad size or spp");
     if (m.res < 1 || m.res > 4096 || (m.res & (m.res - 1)) != 0)
         throw std::runtime_error("res " + std::to_string(m.res) + " is not a power of two");
-    m.profile = j.at("profile").get<std::string>();
-    raster::ProfileNamed(m.profile);  // throws for an unknown profile
+    m.hardware.profile = j.at("profile").get<std::string>();
+    raster::ProfileNamed(m.hardware.profile);                    // throws for an unknown profile
+    m.hardware.maxAnisotropy = j.value("max_anisotropy", 1.0f);  // absent in older directories: off
+    if (!(m.hardware.maxAnisotropy >= 1.0f && m.hardware.maxAnisotropy <= 16.0f))
+        throw std::runtime_error("max_anisotropy must lie in [1, 16]");
     m.fullTreeDepth = j.at("full_tree_depth").get<int>();
     m.minWeight = j.at("min_weight").get<double>();
     m.fresnel = j.at("fresnel").get<std::string>();
@@ -81,7 +85,7 @@ PemManifest ManifestFromJson(const json& j) {
 }  // namespace
 
 PemManifest PemManifestFor(const TraceManifest& trace, const std::string& pemDir, int res, bool hdr,
-                           const std::vector<int>& inferred, const std::string& profile) {
+                           const std::vector<int>& inferred, const runtime::MapHardware& hardware) {
     PemManifest m;
     m.dir = pemDir;
     const std::string scene = ResolveScene(trace.dir, trace.scene, trace.sceneGiven);
@@ -94,7 +98,7 @@ PemManifest PemManifestFor(const TraceManifest& trace, const std::string& pemDir
     m.spp = trace.spp;
     m.res = res;
     m.hdr = hdr;
-    m.profile = profile;
+    m.hardware = hardware;
     m.fullTreeDepth = trace.fullTreeDepth;
     m.minWeight = trace.minWeight;
     m.fresnel = trace.fresnel;

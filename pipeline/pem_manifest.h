@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "pipeline/trace_manifest.h"
+#include "runtime/map_set.h"
 
 namespace pem::pipeline {
 
@@ -24,7 +25,7 @@ struct PemManifest {
     std::string scene, sceneGiven;
     std::string traceDir, traceDirGiven;
     int width = 0, height = 0, spp = 1, res = 0;
-    std::string profile = "llvmpipe";
+    runtime::MapHardware hardware;
     int fullTreeDepth = 6;  // the tracer's options of the trace (trace_manifest.h)
     double minWeight = 1e-3;
     std::string fresnel = "exact";
@@ -37,7 +38,7 @@ struct PemManifest {
 // The manifest of maps inferred at `inferred` (empty: every sample) from `trace` into pemDir.
 PemManifest PemManifestFor(const TraceManifest& trace, const std::string& pemDir, int res, bool hdr,
                            const std::vector<int>& inferred,
-                           const std::string& profile = "llvmpipe");
+                           const runtime::MapHardware& hardware = {});
 
 void WritePemManifest(const PemManifest& manifest);  // dir/manifest.json
 PemManifest ReadPemManifest(const std::string& dir);

@@ -18,7 +18,8 @@ namespace {
 // Maps by path, loaded on first use; a missing file is remembered as nullptr.
 class MapCache {
   public:
-    MapCache(std::string dir, int res) : dir_(std::move(dir)), res_(res) {}
+    MapCache(std::string dir, int res, const raster::SamplerState& sampler)
+        : dir_(std::move(dir)), res_(res), sampler_(sampler) {}
 
     const raster::Texture* Get(int view, int group, const std::string& name) {
         const std::string path = MapPath(dir_, view, group, name);
@@ -46,11 +47,12 @@ class MapCache {
         if (map.size != res_)
             throw base::InputError(path, "face size " + std::to_string(map.size) +
                                              ", the manifest says " + std::to_string(res_));
-        return infer::ToTexture8(map, raster::SamplerState{});
+        return infer::ToTexture8(map, sampler_);
     }
 
     std::string dir_;
     int res_;
+    raster::SamplerState sampler_;
     std::map<std::string, std::unique_ptr<raster::Texture>> cache_;
 };
 
@@ -64,12 +66,12 @@ runtime::MapSet LoadMapSet(const PemManifest& m) {
     set.groups = m.groups;
     set.spp = m.spp;
     set.res = m.res;
-    set.profile = m.profile;
+    set.hardware = m.hardware;
     TraceManifest tracing;  // the tracer's options, as the trace read them
     tracing.fullTreeDepth = m.fullTreeDepth, tracing.minWeight = m.minWeight;
     tracing.fresnel = m.fresnel;
     set.tracing = tracing.Tracing();
-    auto cache = std::make_shared<MapCache>(m.dir, m.res);
+    auto cache = std::make_shared<MapCache>(m.dir, m.res, m.hardware.Sampler());
     set.map = [cache](int view, int group, const std::string& name) {
         return cache->Get(view, group, name);
     };
@@ -95,7 +97,7 @@ std::unique_ptr<runtime::Renderer> OpenPemDirectory(const std::string& pemDir, i
 }
 
 raster::Camera ViewCamera(const runtime::Renderer& renderer, const std::string& spec, int width,
-                             int height) {
+                          int height) {
     raster::Camera c;
     int index = 0;
     double az = 0, el = 0, dist = 1;

@@ -23,6 +23,20 @@
 
 namespace pem::runtime {
 
+// The hardware that draws the maps: a profile (raster/profile.h) and the maps' sampler state,
+// the same for inference and rendering.
+struct MapHardware {
+    std::string profile = "llvmpipe";
+    float maxAnisotropy = 1.0f;  // GL_TEXTURE_MAX_ANISOTROPY of the lens maps (1: off)
+
+    // Trilinear, seamless, with the anisotropy.
+    raster::SamplerState Sampler() const {
+        raster::SamplerState s;
+        s.maxAnisotropy = maxAnisotropy;
+        return s;
+    }
+};
+
 struct MapSet {
     std::string name;                     // for messages: the PEM directory
     std::vector<raster::Camera> samples;  // every viewpoint sample's camera, whole
@@ -31,7 +45,7 @@ struct MapSet {
     int spp = 1;                          // the traced images' K×K sampling (t's unit)
     int res = 0;                          // face size of the maps
     trace::TraceOptions tracing;          // the ray tracer's options the maps were traced with
-    std::string profile = "llvmpipe";     // the hardware they were inferred for (raster/profile.h)
+    MapHardware hardware;                 // what they were inferred for and are drawn by
     std::function<const raster::Texture*(int view, int group, const std::string& name)> map;
 };
 

@@ -249,7 +249,7 @@ struct Renderer::Impl {
     };
     GroupGeometry Geometry(const GroupDraw& d, bool pemSplit);
     raster::RenderOptions Hardware(const RenderSettings& s) const {
-        return raster::ProfileNamed(s.profile.empty() ? maps.profile : s.profile).options;
+        return raster::ProfileNamed(s.profile.empty() ? maps.hardware.profile : s.profile).options;
     }
     std::vector<LayerUse> Uses(const GroupDraw& d, bool pemSplit) const;
     void DrawStatic(const GroupDraw& d, const GroupGeometry& gg);

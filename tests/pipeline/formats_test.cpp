@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <iterator>
 #include <limits>
 
 #include "base/input_error.h"
@@ -92,6 +93,11 @@ void ExpectSameGroup(const runtime::LensGroupEm& a, const runtime::LensGroupEm& 
 
 void WriteFile(const fs::path& path, const std::string& text) {
     std::ofstream(path) << text;
+}
+
+std::string ReadFile(const fs::path& path) {
+    std::ifstream in(path);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
 // The one-line error a reader gives, or "" when it reads the file.
@@ -199,6 +205,44 @@ TEST(PemManifest, RoundTripsFromATrace) {
     // The first manifest format is refused with what to do.
     WriteFile(fs::path(m.dir) / kManifestJson, R"({"format": "pemref_pem/1"})");
     EXPECT_NE(ErrorOf([&] { ReadPemManifest(m.dir); }).find("infer again"), std::string::npos);
+    fs::remove_all(dir);
+}
+
+TEST(PemManifest, HardwareRoundTripsAndImpossibleAnisotropyIsRefused) {
+    const fs::path dir = FreshDir("pem_manifest_hw");
+    TraceManifest t;
+    t.dir = (dir / "trace").string();
+    t.scene = SceneForStorage(t.dir, kMirrorSphere);
+    t.sceneGiven = kMirrorSphere;
+    t.width = 64, t.height = 48, t.spp = 1;
+    t.views = {{OddCamera(), 0, 0, {}, {}, {}, {}, {}, {}, {}, {}}};
+    t.groups = {SomeGroup(1)};
+    t.groups[0].index = 0;
+    PemManifest m = PemManifestFor(t, (dir / "pem").string(), 32, false, {},
+                                   runtime::MapHardware{"exact-lod", 8.0f});
+    fs::create_directories(m.dir);
+    WritePemManifest(m);
+    const PemManifest r = ReadPemManifest(m.dir);
+    EXPECT_EQ(r.hardware.profile, "exact-lod");
+    EXPECT_EQ(r.hardware.maxAnisotropy, 8.0f);
+    EXPECT_EQ(r.hardware.Sampler().maxAnisotropy, 8.0f);
+    // Out of GL's range, or not a number: one line naming the file.
+    const std::string path = (fs::path(m.dir) / kManifestJson).string();
+    const std::string text = ReadFile(path);
+    const size_t at = text.find("\"max_anisotropy\": 8.0");
+    ASSERT_NE(at, std::string::npos);
+    for (const char* bad : {"0.5", "17.0", "-1", "\"x\""}) {
+        std::string t2 = text;
+        t2.replace(at, std::string("\"max_anisotropy\": 8.0").size(),
+                   std::string("\"max_anisotropy\": ") + bad);
+        WriteFile(path, t2);
+        EXPECT_EQ(ErrorOf([&] { ReadPemManifest(m.dir); }).rfind(path + ": ", 0), 0u) << bad;
+    }
+    // Absent (directories written before the key existed): isotropic.
+    std::string old = text;
+    old.replace(at, std::string("\"max_anisotropy\": 8.0,").size(), "");
+    WriteFile(path, old);
+    EXPECT_EQ(ReadPemManifest(m.dir).hardware.maxAnisotropy, 1.0f);
     fs::remove_all(dir);
 }
 

@@ -43,6 +43,17 @@ cmp "$work/copied/moved.png" "$work/a/here.png" || { echo "FAIL: a copied bake r
 "$pemref" bake "$data/scenes/mirror_sphere.gltf" --out "$work/s" --views circle:2:10 \
     --size 96x72 --spp 2 --res 16 --threads 2 --quiet
 "$pemref" report "$work/s" --threads 2 --reference-spp 2 --no-stability --quiet
+# Anisotropic maps: inferred for and drawn with GL_TEXTURE_MAX_ANISOTROPY 16, kept in the manifest;
+# a value outside GL's range is refused.
+"$pemref" infer "$work/s/trace" --out "$work/s/pem16" --res 16 --anisotropy 16 --threads 2 --quiet
+grep -q '"max_anisotropy": 16.0' "$work/s/pem16/manifest.json" ||
+  { echo "FAIL: --anisotropy 16 not in the manifest"; exit 1; }
+"$pemref" render "$work/s/pem16" --view sample:1 --method pem --threads 2 --quiet -o "$work/s/a16.png"
+"$pemref" render "$work/s/pem" --view sample:1 --method pem --threads 2 --quiet -o "$work/s/a1.png"
+! cmp -s "$work/s/a16.png" "$work/s/a1.png" || { echo "FAIL: anisotropic maps drawn isotropically"; exit 1; }
+if "$pemref" infer "$work/s/trace" --out "$work/s/bad" --anisotropy 17 --quiet 2>/dev/null; then
+  echo "FAIL: --anisotropy 17 accepted"; exit 1
+fi
 # Golden images of its PEM directory: the same bytes with 1 and 2 threads, and check passes.
 mkdir -p "$work/gs"
 cat > "$work/gs/suite.json" <<'EOF'

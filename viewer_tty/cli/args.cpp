@@ -54,6 +54,13 @@ void AddProfileOption(CLI::App* sub, std::string* profile) {
         });
 }
 
+void AddMapHardwareOptions(CLI::App* sub, runtime::MapHardware* hardware) {
+    AddProfileOption(sub, &hardware->profile);
+    sub->add_option("--anisotropy", hardware->maxAnisotropy,
+                    "the lens maps' GL_TEXTURE_MAX_ANISOTROPY (1: off, 2..16)")
+        ->check(CLI::Range(1.0, 16.0));
+}
+
 std::function<void(const std::string&, double)> ProgressTo(tty::ProgressLine* line) {
     if (!line->Enabled()) return {};
     return [line](const std::string&, double f) { line->Update(f); };

@@ -28,6 +28,9 @@ runtime::Method ParseMethod(const std::string& name);
 // --profile NAME: one of raster/profile.h's profiles (the value is checked).
 void AddProfileOption(CLI::App* sub, std::string* profile);
 
+// --profile and --anisotropy N (the lens maps' GL_TEXTURE_MAX_ANISOTROPY, 1..16) of inference.
+void AddMapHardwareOptions(CLI::App* sub, runtime::MapHardware* hardware);
+
 // pemref's version ("0.1.0", the project's CMake version).
 std::string PemrefVersion();
 // It and every profile's model (`pemref --version`).

@@ -44,7 +44,7 @@ void AddBakeCommand(CLI::App& app) {
     sub->add_option("--jobs", o.jobs, "viewpoint samples inferred at once")
         ->check(CLI::Range(1, 64));
     sub->add_option("--threads", o.threads, "threads per job")->check(CLI::Range(1, 256));
-    AddProfileOption(sub, &o.infer.profile);
+    AddMapHardwareOptions(sub, &o.infer.hardware);
     sub->add_flag("--quiet", a.quiet, "no progress line");
 }
 

@@ -57,7 +57,7 @@ void AddInferCommand(CLI::App& app) {
     sub->add_option("--out", o.outDir, "PEM directory")->required();
     sub->add_option("--res", o.res, "cube face size N (power of two)");
     sub->add_option("--threads", o.threads, "worker threads")->check(CLI::Range(1, 256));
-    AddProfileOption(sub, &o.profile);
+    AddMapHardwareOptions(sub, &o.hardware);
     sub->add_option("--views", a.views, "viewpoint samples to infer, e.g. 0,2 (default: all)");
     sub->add_option("--neighbours", o.neighbours,
                     "samples on each side in the simultaneous solve (hybrid §4.3)")

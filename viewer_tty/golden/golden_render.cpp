@@ -73,7 +73,7 @@ runtime::MapSet StaticMapSet(const trace::Scene& scene, const raster::Camera& ca
         m.groups.push_back(em);
     }
     m.res = 128;
-    m.profile = profile;
+    m.hardware.profile = profile;
     m.map = [](int, int, const std::string&) -> const raster::Texture* { return nullptr; };
     return m;
 }
