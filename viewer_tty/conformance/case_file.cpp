@@ -379,12 +379,14 @@ Frame ParseCaseJson(const std::string& text, const std::string& path) {
     json root;
     try {
         root = json::parse(text);
-    } catch (const json::parse_error& e) {
+    } catch (const json::exception& e) {  // syntax, and numbers beyond double (out_of_range)
         throw base::InputError(path, std::string("invalid JSON: ") + e.what());
     }
     try {
         return ParseFrame(root);
     } catch (const CaseError& e) {
+        throw base::InputError(path, e.what());
+    } catch (const json::exception& e) {
         throw base::InputError(path, e.what());
     }
 }
