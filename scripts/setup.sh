@@ -3,7 +3,7 @@
 set -euo pipefail
 export DEBIAN_FRONTEND=noninteractive
 packages=(
-  build-essential cmake pkg-config git clang
+  build-essential cmake pkg-config git clang libclang-rt-14-dev
   libglm-dev nlohmann-json3-dev libcli11-dev libpng-dev libgtest-dev
   libopenexr-dev libtinygltf-dev libembree-dev libtbb-dev
   libeigen3-dev libsuitesparse-dev
