@@ -24,10 +24,11 @@ float MaxSse(float a, float b) {
 
 enum Axis { kX, kY, kZ };
 
+// Both tests are LLVM's unordered compares (lp_build_cmp): true when either side is NaN.
 Axis MajorAxis(const Vec3f& d) {
     const float as = std::fabs(d[0]), at = std::fabs(d[1]), ar = std::fabs(d[2]);
-    if (ar >= MaxSse(as, at)) return kZ;  // select3: z wins over the x/y choice
-    return as > at ? kX : kY;
+    if (!(ar < MaxSse(as, at))) return kZ;  // select3: z wins over the x/y choice
+    return !(as <= at) ? kX : kY;
 }
 
 // Mirrored minor coordinates (sc, tc) of a vector on the face of `axis` with major sign bit
@@ -80,8 +81,9 @@ CubeCoord CubeLookup(const Vec3f& dir, const Vec3f& ddx, const Vec3f& ddy, bool 
         out.dsdy = (scdy - madyDivMa * sc) * imaHalf;
         out.dtdy = (tcdy - madyDivMa * tc) * imaHalf;
     } else {
+        // lp_build_cube_imapos: 0.5/|ma| unless |ma| > 0 fails (unordered: NaN gives NaN).
         const float am = std::fabs(ma);
-        imaHalfPos = am > 0.0f ? 0.5f / am : 0.0f;
+        imaHalfPos = !(am <= 0.0f) ? 0.5f / am : 0.0f;
     }
     out.s = sc * imaHalfPos + 0.5f;
     out.t = tc * imaHalfPos + 0.5f;

@@ -37,8 +37,8 @@ void CubeLanes(const LaneCoords& c, bool withDerivs, float n, int32_t* face, flo
     for (int l = 0; l < kLanes; ++l) {
         const float x = d[0][l], y = d[1][l], z = d[2][l];
         const float as = std::fabs(x), at = std::fabs(y), ar = std::fabs(z);
-        const bool isZ = ar >= (as > at ? as : at);
-        const bool isX = !isZ & (as > at);
+        const bool isZ = !(ar < (as > at ? as : at));  // unordered compares (NaN: true)
+        const bool isX = !isZ & !(as <= at);
         const bool isY = !isX & !isZ;
         const uint32_t mX = 0u - static_cast<uint32_t>(isX), mY = 0u - static_cast<uint32_t>(isY);
         const uint32_t mZ = 0u - static_cast<uint32_t>(isZ);
@@ -72,10 +72,11 @@ void CubeLanes(const LaneCoords& c, bool withDerivs, float n, int32_t* face, flo
         const float rho = rx > ry ? rx : ry;
         const uint32_t rb = FloatBits(rho);
         const uint32_t finite = 0u - static_cast<uint32_t>((rb & 0x7f800000u) != 0x7f800000u);
-        // Without derivatives: 0.5/|ma|, guarded against 0.
+        // Without derivatives: 0.5/|ma|, guarded against 0 (unordered: NaN stays NaN).
         const float am = std::fabs(ma);
-        const float plain = 0.5f / (am > 0.0f ? am : 1.0f);
-        const float imaHalfPos = withDerivs ? std::fabs(imaHalf) : (am > 0.0f ? plain : 0.0f);
+        const bool amPositive = !(am <= 0.0f);
+        const float plain = 0.5f / (amPositive ? am : 1.0f);
+        const float imaHalfPos = withDerivs ? std::fabs(imaHalf) : (amPositive ? plain : 0.0f);
         rho2[l] = withDerivs ? BitsFloat(rb & finite) : 0.0f;
         s[l] = sc * imaHalfPos + 0.5f;
         t[l] = tc * imaHalfPos + 0.5f;

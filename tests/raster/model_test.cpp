@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 #include "raster/blend.h"
 #include "raster/cube_lookup.h"
@@ -24,6 +25,23 @@ TEST(CubeFace, TiesPreferZThenY) {
     EXPECT_EQ(CubeFace({0, 0, 0}), 4);      // zero vector: +Z (sign bit clear)
     EXPECT_EQ(CubeFace({0, 0, -0.0f}), 5);  // -0.0 selects the negative face
     EXPECT_EQ(CubeFace({-0.0f, 0, 0}), 4);
+}
+
+TEST(CubeFace, NanComparesAreUnordered) {
+    // lp_build_cube_lookup: |x| > |y| and |z| >= maxps(|x|, |y|) are unordered (true on NaN);
+    // maxps returns its second operand when either is NaN (raster-model.md §11).
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    EXPECT_EQ(CubeFace({nan, 1, 0.5f}), 0);      // max = |y|, z loses, |x| > |y| holds: +X
+    EXPECT_EQ(CubeFace({nan, 1, 2}), 4);         // max = |y|, z wins
+    EXPECT_EQ(CubeFace({1, nan, 0.5f}), 4);      // max is NaN: z
+    EXPECT_EQ(CubeFace({2, 1, nan}), 4);         // |z| NaN: z
+    EXPECT_EQ(CubeFace({-nan, -nan, -nan}), 5);  // the sign bit of the NaN picks the face
+    // Without derivatives 0.5/|ma| is taken where |ma| > 0 holds unordered: NaN, not 0.
+    const Vec3f zero{0, 0, 0};
+    const CubeCoord c = CubeLookup({nan, nan, nan}, zero, zero, false);
+    EXPECT_EQ(c.face, 4);
+    EXPECT_TRUE(std::isnan(c.s) && std::isnan(c.t));
+    EXPECT_EQ(CubeLookup({0, 0, 0}, zero, zero, false).s, 0.5f);  // |ma| = 0: 0.5/|ma| unused
 }
 
 TEST(CubeFace, ProjectionMatchesGlTable) {
