@@ -51,7 +51,7 @@ PipeLodState DerivePipeLodState(const SamplerState& s, int /*numLevels*/) {
 
 [[gnu::always_inline]] inline LodResult LevelsFor(float lambda, MipFilter mip, int numLevels) {
     LodResult r;
-    r.magnify = !(lambda > 0.0f);
+    r.magnify = lambda <= 0.0f;  // lod_positive: unordered lambda > 0 (NaN minifies)
     const int last = numLevels - 1;
     switch (mip) {
         case MipFilter::None:
@@ -90,7 +90,7 @@ PipeLodState DerivePipeLodState(const SamplerState& s, int /*numLevels*/) {
     if (!shortcut)
         return isa::LevelsFor(isa::LambdaFromRhoSquared(rhoSquared, st, exactLog2), mip, numLevels);
     LodResult r;
-    r.magnify = !(rhoSquared > 1.0f);
+    r.magnify = rhoSquared <= 1.0f;  // lod_positive: unordered rho > 1 (NaN minifies)
     if (mip == MipFilter::Nearest) {
         const int e = static_cast<int>((FloatBits(rhoSquared) >> 23) & 255u) - 126;
         r.level0 = r.level1 = std::clamp(e >> 1, 0, numLevels - 1);

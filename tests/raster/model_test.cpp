@@ -149,6 +149,22 @@ TEST(Lod, NearestShortcutDiffersFromRoundingAtOddPowersOfTwo) {
     EXPECT_FLOAT_EQ(LambdaFromRhoSquared(3.0f, plain, false), 0.75f);  // 0.5*(1 + 0.5)
 }
 
+TEST(Lod, NanRhoSquaredMinifies) {
+    // lod_positive is rho^2 > 1 (shortcut) or lambda > 0, unordered: a NaN rho^2 (2D quads whose
+    // differences are Inf - Inf) counts as minified.
+    SamplerState s;
+    s.minFilter = Filter::Linear;
+    s.magFilter = Filter::Nearest;
+    s.mipFilter = MipFilter::None;
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    EXPECT_FALSE(SelectLod(nan, DerivePipeLodState(s, 5), MipFilter::None, 5, false).magnify);
+    s.lodBias = 0.5f;  // general path: lambda from FastLog2(NaN) is finite and positive
+    EXPECT_FALSE(SelectLod(nan, DerivePipeLodState(s, 5), MipFilter::None, 5, false).magnify);
+    EXPECT_FALSE(LevelsFor(nan, MipFilter::None, 5).magnify);
+    EXPECT_TRUE(SelectLod(1.0f, DerivePipeLodState(SamplerState{}, 5), MipFilter::Nearest, 5, false)
+                    .magnify);
+}
+
 TEST(Lod, LinearLevelsClampAndZeroFraction) {
     const LodResult below = LevelsFor(-0.5f, MipFilter::Linear, 5);
     EXPECT_TRUE(below.magnify);
