@@ -155,7 +155,13 @@ Footprint SeamlessLinear(float s, float t, int face, int size) {
     const float fu = std::floor(u), fv = std::floor(v);
     f.a = u - fu;
     f.b = v - fv;
-    const int x0 = TruncI32(fu), y0 = TruncI32(fv), x1 = x0 + 1, y1 = y0 + 1, max = size - 1;
+    // Under FTZ, s and t are NaN (then 0 here) or within [0, 1], so the floors lie in
+    // [-1, size - 1]. Only the linear profile (no FTZ) reaches +Inf, from the projection of a
+    // denormal major axis (1/ma overflows); its column and row stop at the far edge instead of
+    // indexing past the face.
+    const float last = sizef - 1.0f;
+    const int x0 = TruncI32(fu < last ? fu : last), y0 = TruncI32(fv < last ? fv : last);
+    const int x1 = x0 + 1, y1 = y0 + 1, max = size - 1;
     const bool offX0 = x0<0, offX1 = x1> max, offY0 = y0<0, offY1 = y1> max;
     const int y0c = std::max(y0, 0), y1c = std::min(y1, max);
     const int xs[4] = {x0, x1, x0, x1};
