@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "tests/case_generator.h"
 
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <glm/gtc/matrix_transform.hpp>
@@ -497,6 +498,201 @@ void Magnitudes(std::vector<NamedCase>* out) {
         out->push_back(
             {"magnitude_1e" + std::string(e < 0 ? "m" : "p") + std::to_string(std::abs(e)), f});
     }
+}
+
+// Float-range extremes. ------------------------------------------------------------------------
+// Texture coordinates from the smallest denormal to FLT_MAX: denormals (flushed to zero in the
+// fragment stage), FLT_MIN, 1e35, 1e38, 3e38 and FLT_MAX, where differences, products, squares
+// and 1/ma leave the float range. Each magnitude m is a row of 16-pixel cells:
+//  0 sweep      corners across several faces (opposite signs: differences of 2m overflow)
+//  1 narrow     a small solid angle around +X (magnified at small m, ulp steps at large m)
+//  2 mixed      magnitudes m and 1 within one triangle
+//  3 denormal   minor components denormal next to a major m
+//  4 ties       |x| = |y| = |z| = m (face ties exact at every magnitude)
+//  5 perspective  the sweep at w from 0.25 to 4: the setup's a * (1/w) overflows from m ~ 8.5e37
+constexpr float kExtremeMagnitudes[] = {1.4e-45f, 1e-40f, 1.17549435e-38f, 1.0f,           1e35f,
+                                        1e38f,    3e38f,  3.2e38f,         3.40282347e+38f};
+constexpr int kExtremeCells = 6;
+
+// The corner coordinates of cell `cell` at magnitude m (cube directions; the 2D cases use the
+// first two components).
+std::array<glm::vec3, 4> ExtremeCorners(int cell, float m) {
+    const float d = 1e-39f;  // denormal
+    switch (cell) {
+        case 1:
+            return {glm::vec3(1.0f, 0.3f, -0.2f) * m, glm::vec3(1.0f, 0.32f, -0.2f) * m,
+                    glm::vec3(1.0f, 0.32f, -0.18f) * m, glm::vec3(1.0f, 0.3f, -0.18f) * m};
+        case 2:
+            return {glm::vec3(m, 1.0f, 0.5f), glm::vec3(1.0f, m, -0.5f), glm::vec3(-0.5f, 1.0f, m),
+                    glm::vec3(-m, -0.5f * m, 1.0f)};
+        case 3:
+            return {glm::vec3(m, d, -d), glm::vec3(m, -d, d), glm::vec3(-d, m, d),
+                    glm::vec3(d, -d, -m)};
+        case 4:
+            return {glm::vec3(m, m, m), glm::vec3(m, -m, m), glm::vec3(-m, m, -m),
+                    glm::vec3(m, m, -m)};
+        default:  // 0 and 5
+            return {glm::vec3(-1.0f, -0.66f, 0.33f) * m, glm::vec3(1.0f, -0.66f, 0.33f) * m,
+                    glm::vec3(0.66f, 1.0f, -0.33f) * m, glm::vec3(-0.66f, 1.0f, -0.33f) * m};
+    }
+}
+
+// The rows of cells of every magnitude; `uv`: coordinates for a 2D unit (x, y of each corner).
+void AddExtremeRows(Pass* p, bool uv) {
+    const int rows = static_cast<int>(std::size(kExtremeMagnitudes));
+    for (int r = 0; r < rows; ++r) {
+        const float y0 = -1.0f + 2.0f * static_cast<float>(r) / rows, y1 = y0 + 2.0f / rows;
+        for (int cell = 0; cell < kExtremeCells; ++cell) {
+            const float x0 = -1.0f + 2.0f * static_cast<float>(cell) / kExtremeCells;
+            const float x1 = x0 + 2.0f / kExtremeCells;
+            std::array<glm::vec3, 4> c = ExtremeCorners(cell, kExtremeMagnitudes[r]);
+            if (uv)
+                for (glm::vec3& v : c) v.z = 0.0f;
+            if (cell != 5) {
+                AddQuad(p, x0, y0, x1, y1, c.data());
+                continue;
+            }
+            const float w[4] = {0.25f, 1.0f, 4.0f, 2.0f};
+            const glm::vec2 xy[4] = {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
+            for (int k : {0, 1, 2, 0, 2, 3})
+                p->vertices.push_back(
+                    V(glm::vec4(xy[k] * w[k], 0.0f, w[k]), c[static_cast<size_t>(k)]));
+        }
+    }
+}
+
+void Extremes(std::vector<NamedCase>* out) {
+    const int w = 16 * kExtremeCells, h = 8 * static_cast<int>(std::size(kExtremeMagnitudes));
+    // Cube maps on every filter path: the 8-bit path (plain or nearest), the float path
+    // (seamless linear, min != mag with a MIP filter), its fast seamless trilinear form, LOD
+    // controls and the anisotropic path.
+    struct CubeVariant {
+        const char* name;
+        Filter min;
+        MipFilter mip;
+        Filter mag;
+        bool seamless;
+        float bias = 0.0f, maxAniso = 1.0f;
+        float fixedLod = -1.0f;  // >= 0: min_lod = max_lod (no derivatives)
+    };
+    const CubeVariant cubes[] = {
+        {"nearest_plain", Filter::Nearest, MipFilter::None, Filter::Nearest, false},
+        {"nearest_seamless", Filter::Nearest, MipFilter::None, Filter::Nearest, true},
+        {"linear_plain", Filter::Linear, MipFilter::None, Filter::Linear, false},
+        {"linear_seamless", Filter::Linear, MipFilter::None, Filter::Linear, true},
+        {"linear_mag_nearest_plain", Filter::Linear, MipFilter::None, Filter::Nearest, false},
+        {"nmn_plain", Filter::Nearest, MipFilter::Nearest, Filter::Nearest, false},
+        {"nml_seamless", Filter::Nearest, MipFilter::Linear, Filter::Nearest, true},
+        {"lmn_seamless", Filter::Linear, MipFilter::Nearest, Filter::Linear, true},
+        {"lml_plain", Filter::Linear, MipFilter::Linear, Filter::Linear, false},
+        {"lml_seamless", Filter::Linear, MipFilter::Linear, Filter::Linear, true},
+        {"lml_mag_nearest_seamless", Filter::Linear, MipFilter::Linear, Filter::Nearest, true},
+        {"lml_bias_seamless", Filter::Linear, MipFilter::Linear, Filter::Linear, true, 0.6f},
+        {"nmn_bias_plain", Filter::Nearest, MipFilter::Nearest, Filter::Nearest, false, -0.3f},
+        {"aniso_lml_seamless", Filter::Linear, MipFilter::Linear, Filter::Linear, true, 0, 16},
+        {"aniso_nmn_plain", Filter::Nearest, MipFilter::Nearest, Filter::Nearest, false, 0, 4},
+        {"lml_lod_fixed_seamless", Filter::Linear, MipFilter::Linear, Filter::Linear, true, 0, 1,
+         1.0f},
+    };
+    uint64_t seed = 15000;
+    for (const CubeVariant& v : cubes) {
+        Frame f = NewFrame(w, h);
+        SamplerState s = Sampler(v.min, v.mip, v.mag, v.seamless);
+        s.lodBias = v.bias;
+        s.maxAnisotropy = v.maxAniso;
+        if (v.fixedLod >= 0.0f) s.minLod = s.maxLod = v.fixedLod;
+        f.textures.push_back(Cube(16, s, ++seed));
+        Pass p;
+        AddExtremeRows(&p, false);
+        f.passes.push_back(p);
+        out->push_back({std::string("extreme_cube_") + v.name, f});
+    }
+    // 2D textures: the same rows as (s, t) with each wrap mode.
+    struct Variant2D {
+        const char* name;
+        Filter min;
+        MipFilter mip;
+        Filter mag;
+        Wrap wrapS, wrapT;
+        float bias = 0.0f, maxAniso = 1.0f;
+    };
+    const Variant2D planes[] = {
+        {"nearest_repeat", Filter::Nearest, MipFilter::None, Filter::Nearest, Wrap::Repeat,
+         Wrap::Repeat},
+        {"linear_repeat", Filter::Linear, MipFilter::None, Filter::Linear, Wrap::Repeat,
+         Wrap::Repeat},
+        {"linear_clamp", Filter::Linear, MipFilter::None, Filter::Linear, Wrap::ClampToEdge,
+         Wrap::ClampToEdge},
+        {"nearest_mirror", Filter::Nearest, MipFilter::None, Filter::Nearest, Wrap::MirroredRepeat,
+         Wrap::MirroredRepeat},
+        {"lml_repeat", Filter::Linear, MipFilter::Linear, Filter::Linear, Wrap::Repeat,
+         Wrap::Repeat},
+        {"nmn_clamp", Filter::Nearest, MipFilter::Nearest, Filter::Nearest, Wrap::ClampToEdge,
+         Wrap::ClampToEdge},
+        {"lml_mirror", Filter::Linear, MipFilter::Linear, Filter::Linear, Wrap::MirroredRepeat,
+         Wrap::MirroredRepeat},
+        {"linear_mag_nearest_repeat", Filter::Linear, MipFilter::None, Filter::Nearest,
+         Wrap::Repeat, Wrap::Repeat},
+        {"nmn_mag_linear_mirror", Filter::Nearest, MipFilter::Nearest, Filter::Linear,
+         Wrap::MirroredRepeat, Wrap::MirroredRepeat},
+        {"lml_mag_nearest_mirror", Filter::Linear, MipFilter::Linear, Filter::Nearest,
+         Wrap::MirroredRepeat, Wrap::MirroredRepeat},
+        {"lml_bias_clamp", Filter::Linear, MipFilter::Linear, Filter::Linear, Wrap::ClampToEdge,
+         Wrap::ClampToEdge, -0.7f},
+        {"aniso_lml_repeat", Filter::Linear, MipFilter::Linear, Filter::Linear, Wrap::Repeat,
+         Wrap::Repeat, 0, 16},
+        {"linear_repeat_mirror", Filter::Linear, MipFilter::None, Filter::Linear, Wrap::Repeat,
+         Wrap::MirroredRepeat},
+        {"nmn_mag_linear_repeat_mirror", Filter::Nearest, MipFilter::Nearest, Filter::Linear,
+         Wrap::Repeat, Wrap::MirroredRepeat},
+    };
+    for (const Variant2D& v : planes) {
+        Frame f = NewFrame(w, h);
+        SamplerState s = Sampler(v.min, v.mip, v.mag);
+        s.wrapS = v.wrapS;
+        s.wrapT = v.wrapT;
+        s.lodBias = v.bias;
+        s.maxAnisotropy = v.maxAniso;
+        f.textures.push_back(MakeTexture(TextureKind::Tex2D, 16, 8, s, ++seed));
+        Pass p;
+        AddExtremeRows(&p, true);
+        f.passes.push_back(p);
+        out->push_back({std::string("extreme_2d_") + v.name, f});
+    }
+    // Reflection spheres scaled to the magnitudes past the old 1e30 limit, trilinear seamless.
+    const std::pair<const char*, float> spheres[] = {{"denormal_min", 1.4e-45f},
+                                                     {"denormal", 1e-40f},
+                                                     {"flt_min", 1.17549435e-38f},
+                                                     {"1e35", 1e35f},
+                                                     {"1e38", 1e38f},
+                                                     {"3e38", 3e38f},
+                                                     {"flt_max", 3.40282347e+38f}};
+    for (const auto& [name, scale] : spheres) {
+        Frame f = NewFrame(64, 64);
+        f.textures.push_back(
+            Cube(32, Sampler(Filter::Linear, MipFilter::Linear, Filter::Linear), 3));
+        Pass p;
+        AddSphere(&p, 16, 20, 1.0f, {0.2f, 0.4f, 3.0f}, {0, 0, 0}, 1.0f, scale);
+        f.passes.push_back(p);
+        out->push_back({std::string("extreme_sphere_") + name, f});
+    }
+    // Clipped triangles carrying huge attributes: the clipper interpolates out + t * (in - out).
+    Frame f = NewFrame(64, 48);
+    f.textures.push_back(
+        Cube(16, Sampler(Filter::Linear, MipFilter::Linear, Filter::Linear, false), ++seed));
+    Pass p;
+    Rng rng{1500};
+    for (int t = 0; t < 24; ++t) {
+        const float m = kExtremeMagnitudes[5 + t % 4];
+        for (int k = 0; k < 3; ++k) {
+            const glm::vec4 pos(rng.Uniform(-2.5f, 2.5f), rng.Uniform(-2.5f, 2.5f),
+                                rng.Uniform(-1.5f, 1.5f), 1.0f);
+            const glm::vec3 d(rng.Uniform(-1, 1), rng.Uniform(-1, 1), rng.Uniform(-1, 1));
+            p.vertices.push_back(V(pos, d * m));
+        }
+    }
+    f.passes.push_back(p);
+    out->push_back({"extreme_clipped", f});
 }
 
 // Clipping: w near zero, vertices behind the eye, huge triangles, z planes and depth clamp. ---
@@ -1251,6 +1447,7 @@ std::vector<NamedCase> ConformanceCases() {
     OddSizes(&out);
     Depth(&out);
     Anisotropy(&out);
+    Extremes(&out);
     return out;
 }
 
