@@ -18,6 +18,7 @@
 #include "base/parallel.h"
 #include "base/png_io.h"
 #include "base/sha256.h"
+#include "base/xml_text.h"
 
 namespace pem::base {
 namespace {
@@ -61,6 +62,12 @@ TEST(Sha256, NullPointerEmpty) {
 }
 
 // PNG ------------------------------------------------------------------------------------------
+
+TEST(XmlText, EscapesMarkupAndQuotesOnly) {
+    EXPECT_EQ(base::XmlEscaped(R"(a<b & "c"> it's)"), "a&lt;b &amp; &quot;c&quot;&gt; it's");
+    EXPECT_EQ(base::XmlEscaped("10\xc2\xb0 above"), "10\xc2\xb0 above");  // UTF-8 kept
+    EXPECT_EQ(base::XmlEscaped(""), "");
+}
 
 TEST(Png, WritesSignatureAndLeavesNoTemp) {
     const auto dir =

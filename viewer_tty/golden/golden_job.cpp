@@ -10,6 +10,7 @@
 #include "base/input_error.h"
 #include "base/png_io.h"
 #include "base/sha256.h"
+#include "base/xml_text.h"
 #include "raster/profile.h"
 #include "viewer_tty/golden/flip.h"
 #include "viewer_tty/golden/golden_file.h"
@@ -134,29 +135,6 @@ CheckResult RunCheck(const Suite& suite, const GoldenRecord& record, const Golde
     return result;
 }
 
-std::string XmlEscaped(const std::string& s) {
-    std::string out;
-    for (char c : s) {
-        switch (c) {
-            case '&':
-                out += "&amp;";
-                break;
-            case '<':
-                out += "&lt;";
-                break;
-            case '>':
-                out += "&gt;";
-                break;
-            case '"':
-                out += "&quot;";
-                break;
-            default:
-                out += c;
-        }
-    }
-    return out;
-}
-
 }  // namespace
 
 int CheckResult::Failures() const {
@@ -230,20 +208,22 @@ void WriteJUnit(const CheckResult& r, const std::string& path) {
     const std::string counts = "tests=\"" + std::to_string(r.tests.size()) + "\" failures=\"" +
                                std::to_string(r.Failures()) + "\" errors=\"0\"";
     std::string xml = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<testsuites " + counts + ">\n";
-    xml += "  <testsuite name=\"pemref golden " + XmlEscaped(r.suite) + "\" " + counts +
+    xml += "  <testsuite name=\"pemref golden " + base::XmlEscaped(r.suite) + "\" " + counts +
            " time=\"" + std::to_string(seconds) + "\">\n";
-    xml += "    <properties><property name=\"profile\" value=\"" + XmlEscaped(r.profile) +
+    xml += "    <properties><property name=\"profile\" value=\"" + base::XmlEscaped(r.profile) +
            "\"/></properties>\n";
     for (const TestResult& t : r.tests) {
-        xml += "    <testcase classname=\"golden\" name=\"" + XmlEscaped(t.name) + "\" time=\"" +
-               std::to_string(t.seconds) + "\"";
+        xml += "    <testcase classname=\"golden\" name=\"" + base::XmlEscaped(t.name) +
+               "\" time=\"" + std::to_string(t.seconds) + "\"";
         if (t.passed) {
             xml += "/>\n";
             continue;
         }
-        xml += ">\n      <failure type=\"" + XmlEscaped(t.rule) + "\" message=\"" +
-               XmlEscaped(t.rule + ": " + t.detail) + "\">diff: " + XmlEscaped(t.diffPng) +
-               "\nside by side: " + XmlEscaped(t.sideBySidePng) + "</failure>\n    </testcase>\n";
+        xml += ">\n      <failure type=\"" + base::XmlEscaped(t.rule) + "\" message=\"" +
+               base::XmlEscaped(t.rule + ": " + t.detail) +
+               "\">diff: " + base::XmlEscaped(t.diffPng) +
+               "\nside by side: " + base::XmlEscaped(t.sideBySidePng) +
+               "</failure>\n    </testcase>\n";
     }
     xml += "  </testsuite>\n</testsuites>\n";
     base::WriteTextAtomic(path, xml);

@@ -17,6 +17,7 @@
 #include <utility>
 
 #include "base/atomic_file.h"
+#include "base/xml_text.h"
 
 namespace pem::report {
 
@@ -60,29 +61,6 @@ std::string HeaderRow(const std::vector<std::string>& names, const std::string& 
     std::string rule = "|";
     for (size_t i = 0; i < names.size(); ++i) rule += align.at(i) == 'r' ? "---:|" : "---|";
     return Row(names) + rule + "\n";
-}
-
-std::string Xml(const std::string& text) {
-    std::string out;
-    for (char c : text) {
-        switch (c) {
-            case '&':
-                out += "&amp;";
-                break;
-            case '<':
-                out += "&lt;";
-                break;
-            case '>':
-                out += "&gt;";
-                break;
-            case '"':
-                out += "&quot;";
-                break;
-            default:
-                out += c;
-        }
-    }
-    return out;
 }
 
 // Natural order: digit runs compare as numbers ("t=3" < "t=10"), the rest byte-wise.
@@ -211,7 +189,8 @@ std::string P(double v) {
 }
 
 std::string SvgText(double x, double y, const std::string& text, const std::string& attrs) {
-    return "<text x=\"" + P(x) + "\" y=\"" + P(y) + "\" " + attrs + ">" + Xml(text) + "</text>\n";
+    return "<text x=\"" + P(x) + "\" y=\"" + P(y) + "\" " + attrs + ">" + base::XmlEscaped(text) +
+           "</text>\n";
 }
 
 std::string SvgLine(double x1, double y1, double x2, double y2, const std::string& attrs) {
@@ -275,8 +254,8 @@ std::string SvgPanelData(const std::vector<MethodResult>& sorted, const std::str
             points += P(x) + "," + P(y) + " ";
             markers += "<circle class=\"marker\" cx=\"" + P(x) + "\" cy=\"" + P(y) +
                        "\" r=\"4.5\" fill=\"" + colour + "\" stroke=\"#fff\"><title>" +
-                       Xml(method + " " + r.setting + ": " + Num(r.seconds) + " s, RMSE " +
-                           Num(r.floatScores.rmse)) +
+                       base::XmlEscaped(method + " " + r.setting + ": " + Num(r.seconds) +
+                                        " s, RMSE " + Num(r.floatScores.rmse)) +
                        "</title></circle>\n";
             if (!r.setting.empty())
                 markers += SvgText(x + 6, y - 6, r.setting, "font-size=\"10\" fill=\"#333\"");
