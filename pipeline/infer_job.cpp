@@ -10,6 +10,7 @@
 #include <cmath>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "base/atomic_file.h"
 #include "base/input_error.h"
@@ -110,8 +111,9 @@ struct MapInput {
     const trace::FloatImage* coverage = nullptr;  // alpha = lens coverage
     const trace::FloatImage* confidence = nullptr;
     raster::Pass pass;
-    double weight = 1.0;  // multiplies the confidence
-    bool own = true;      // the sample's own view (counts in rmse_8bit)
+    std::optional<raster::Pass> depthPass;  // drawn before `pass`: depth only (DepthOnlyPass)
+    double weight = 1.0;                    // multiplies the confidence
+    bool own = true;                        // the sample's own view (counts in rmse_8bit)
 };
 
 // Rows of b appended to a (the same columns).
@@ -126,7 +128,7 @@ void AppendRows(raster::RenderingMatrix* a, const raster::RenderingMatrix& b) {
 }
 
 raster::Frame UnknownFrame(int width, int height, int res, const raster::SamplerState& sampler,
-                           const raster::Pass& pass) {
+                           const MapInput& in) {
     raster::Frame frame;
     frame.width = width;
     frame.height = height;
@@ -139,7 +141,8 @@ raster::Frame UnknownFrame(int width, int height, int res, const raster::Sampler
     for (int l = 0; (res >> l) >= 1; ++l)
         tex.levels.emplace_back(static_cast<size_t>(6 * (res >> l) * (res >> l) * 4), 0);
     frame.textures.push_back(std::move(tex));
-    frame.passes.push_back(pass);
+    if (in.depthPass) frame.passes.push_back(*in.depthPass);
+    frame.passes.push_back(in.pass);
     return frame;
 }
 
@@ -182,7 +185,7 @@ StackedRows StackRows(const std::vector<MapInput>& inputs, int w, int h,
     ro.profile = raster::Profile::Linear;
     ro.threads = opt.threads;
     for (size_t k = 0; k < inputs.size(); ++k) {
-        raster::Frame f = UnknownFrame(w, h, opt.res, opt.hardware.Sampler(), inputs[k].pass);
+        raster::Frame f = UnknownFrame(w, h, opt.res, opt.hardware.Sampler(), inputs[k]);
         raster::RenderingMatrix a = raster::BuildRenderingMatrix(raster::PreparedFrame(f), ro);
         if (k == 0) {
             s.a = std::move(a);
@@ -370,6 +373,7 @@ std::vector<MapInput> Observations(const std::vector<ViewGeometry>& geo, int ter
                         &vg.cov[term],
                         &vg.conf[term],
                         {},
+                        {},
                         vg.weight,
                         vg.view == v};
             in.pass = runtime::LayerPass(runtime::MeshOf(vg.lp.tess), vg.order,
@@ -432,18 +436,29 @@ void SolvePemMaps(Context& c, int v, const runtime::LensGroupEm& g, const std::s
     const trace::FloatImage distant = ReadGroupImage(c.tm, v, g.index, "distant");
     const trace::FloatImage local = ReadGroupImage(c.tm, v, g.index, "local");
     const trace::FloatImage conf = ReadGroupImage(c.tm, v, g.index, "confidence_R", 1);
-    const bool convex = runtime::AllOnHull(runtime::HullTriangles(m.mesh));
+    const std::vector<uint8_t> hull = runtime::HullTriangles(m.mesh);
+    const bool convex = runtime::AllOnHull(hull);
     if (convex) {
         c.result->leftOut.push_back(
             {v, g.index, "PEM local layer", "every polygon lies on the reflector's convex hull"});
         ++c.mapsDone;
     }
+    // The local map is drawn, and so fitted, as the renderer draws it: only on the polygons off
+    // the hull, where they are the visible surface (EQUAL after a depth pass of every polygon).
+    // Fitted on every polygon, the hull's, which cannot see the reflector, pulled its coverage
+    // to 0 at the shell points they share with the concave side.
+    const std::vector<uint32_t> offHull = runtime::OffHull(m.order, hull);
     for (int which = convex ? 1 : 0; which < 2; ++which) {
         const trace::Shell& shell = which == 0 ? g.localShell : g.distantShell;
-        MapInput in{which == 0 ? &local : &distant, &distant, &conf, {}, 1.0, true};
-        in.pass =
-            runtime::LayerPass(m.Pass(), m.order, runtime::ShellCoords(m.exits, shell, g.emOrigin),
-                               m.exits, m.viewProjection, DepthTested());
+        MapInput in{which == 0 ? &local : &distant, &distant, &conf, {}, {}, 1.0, true};
+        runtime::PassOptions po = DepthTested();
+        if (which == 0) {
+            in.depthPass = runtime::DepthOnlyPass(m.Pass(), m.order, m.viewProjection);
+            po.depthTest = runtime::LayerDepthTest(false);
+        }
+        in.pass = runtime::LayerPass(m.Pass(), which == 0 ? offHull : m.order,
+                                     runtime::ShellCoords(m.exits, shell, g.emOrigin), m.exits,
+                                     m.viewProjection, po);
         Solve(c, {in}, odir, Report(v, g, which, "pem", which == 0 ? "pem_local" : "pem_distant"));
     }
 }

@@ -158,6 +158,21 @@ raster::Pass LayerPass(const PassMesh& mesh, const std::vector<uint32_t>& order,
     return pass;
 }
 
+raster::Pass DepthOnlyPass(const PassMesh& mesh, const std::vector<uint32_t>& order,
+                           const glm::mat4& viewProjection) {
+    const PassGeometry g = MakePassGeometry(mesh, order, viewProjection);
+    raster::Pass pass;
+    pass.numUnits = 0;
+    pass.depthTest = LayerDepthTest(true);
+    pass.vertices.resize(g.clip.size());
+    for (size_t v = 0; v < g.clip.size(); ++v) {
+        pass.vertices[v].pos = g.clip[v];
+        pass.vertices[v].color = glm::vec4(0.0f);
+    }
+    pass.indices = g.indices;
+    return pass;
+}
+
 PassGeometry MakePassGeometry(const PassMesh& mesh, const std::vector<uint32_t>& order,
                               const glm::mat4& viewProjection, int threads) {
     PassGeometry g;

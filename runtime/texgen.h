@@ -80,6 +80,12 @@ struct PassOptions {
 inline constexpr raster::DepthBuffer kLensDepth{raster::DepthFormat::Z24, 1.0f};
 raster::DepthTest LayerDepthTest(bool firstPass);
 
+// The first pass of a frame that fits one inner layer alone (the PEM split's local map, drawn
+// on fewer triangles than the layer under it): every triangle of `order`, untextured, colour 0,
+// depth written (LESS), so that the layer's pass after it (EQUAL) lands where the renderer's does.
+raster::Pass DepthOnlyPass(const PassMesh& mesh, const std::vector<uint32_t>& order,
+                           const glm::mat4& viewProjection);
+
 // Clip-space transform shared by every pass of a frame: near/far around the mesh.
 glm::mat4 PassViewProjection(const PassMesh& mesh, const raster::Camera& camera);
 
