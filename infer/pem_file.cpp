@@ -18,6 +18,7 @@
 #include <stdexcept>
 
 #include "base/atomic_file.h"
+#include "base/exr_header.h"
 #include "raster/cube_lookup.h"
 
 namespace pem::infer {
@@ -203,12 +204,14 @@ ExrLevelImage ReadExrLevel(const std::string& path, int level) {
 }
 
 CubeMapF ReadCubeMapExr(const std::string& path) {
+    base::CheckExrHeader(path);
     Imf::TiledInputFile in(path.c_str());
     const Imf::Header& header = in.header();
     // Check: a mip-mapped cube map of N x 6N.
     if (!Imf::hasEnvmap(header) || Imf::envmap(header) != Imf::ENVMAP_CUBE)
         throw std::runtime_error(path + ": not a cube environment map");
     const Imath::Box2i dw = header.dataWindow();
+    base::CheckExrSize(path, int64_t{dw.max.x} - dw.min.x + 1, int64_t{dw.max.y} - dw.min.y + 1);
     const int n = dw.max.x - dw.min.x + 1;
     if (dw.max.y - dw.min.y + 1 != 6 * n || !IsPowerOfTwo(n))
         throw std::runtime_error(path + ": data window is not N x 6N with N a power of two");

@@ -9,10 +9,12 @@
 #include <ImfOutputFile.h>
 
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <exception>
 
 #include "base/atomic_file.h"
+#include "base/exr_header.h"
 #include "base/input_error.h"
 
 namespace pem::trace {
@@ -69,10 +71,13 @@ void WriteExr(const std::string& path, const FloatImage& image) {
 }
 
 FloatImage ReadExr(const std::string& path) {
+    base::CheckExrHeader(path);
     FloatImage image;
     try {
         Imf::InputFile file(path.c_str());
         const Imath::Box2i dw = file.header().dataWindow();
+        base::CheckExrSize(path, int64_t{dw.max.x} - dw.min.x + 1,
+                           int64_t{dw.max.y} - dw.min.y + 1);
         const int w = dw.max.x - dw.min.x + 1, h = dw.max.y - dw.min.y + 1;
         const Imf::ChannelList& ch = file.header().channels();
         int channels = 0;

@@ -8,12 +8,14 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "base/atomic_file.h"
 #include "base/directory_lock.h"
+#include "base/exr_header.h"
 #include "base/input_error.h"
 #include "base/parallel.h"
 #include "base/png_io.h"
@@ -67,6 +69,38 @@ TEST(XmlText, EscapesMarkupAndQuotesOnly) {
     EXPECT_EQ(base::XmlEscaped(R"(a<b & "c"> it's)"), "a&lt;b &amp; &quot;c&quot;&gt; it's");
     EXPECT_EQ(base::XmlEscaped("10\xc2\xb0 above"), "10\xc2\xb0 above");  // UTF-8 kept
     EXPECT_EQ(base::XmlEscaped(""), "");
+}
+
+// The one-line error CheckExrHeader gives, or "" when it accepts the file.
+std::string ExrHeaderError(const std::string& path) {
+    try {
+        CheckExrHeader(path);
+    } catch (const InputError& e) {
+        return e.what();
+    }
+    return "";
+}
+
+TEST(ExrHeader, AcceptsRealFilesRefusesClaimsBeyondTheFile) {
+    const std::string src = PEM_SOURCE_DIR;
+    EXPECT_EQ(ExrHeaderError(src + "/data/env/sky.exr"), "");
+    EXPECT_EQ(ExrHeaderError(src + "/data/env/studio.exr"), "");
+    // The fuzzer's file: an attribute claiming 1,768,685,682 bytes in a 44-byte file.
+    const std::string fuzzed =
+        src + "/tests/data/fuzz_regressions/exr/attribute_size_1768685682.exr";
+    EXPECT_EQ(ExrHeaderError(fuzzed), fuzzed + ": a header attribute is longer than the file");
+    // Cut anywhere inside the header, a real file is refused with one line naming it.
+    std::ifstream in(src + "/data/env/sky.exr", std::ios::binary);
+    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::string cut = (std::filesystem::temp_directory_path() / "pem_cut.exr").string();
+    for (size_t n : {size_t{0}, size_t{3}, size_t{8}, size_t{20}, size_t{100}}) {
+        std::ofstream(cut, std::ios::binary) << bytes.substr(0, n);
+        EXPECT_EQ(ExrHeaderError(cut).rfind(cut + ": ", 0), 0u) << n;
+    }
+    std::filesystem::remove(cut);
+    EXPECT_THROW(CheckExrSize("x.exr", 8193, 8192), InputError);
+    EXPECT_THROW(CheckExrSize("x.exr", 0, 1), InputError);
+    EXPECT_NO_THROW(CheckExrSize("x.exr", 8192, 8192));
 }
 
 TEST(Png, WritesSignatureAndLeavesNoTemp) {
