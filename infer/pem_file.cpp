@@ -123,14 +123,12 @@ std::vector<float> LevelImage(const CubeMapF& map, int l, int w, int h,
 Imf::FrameBuffer RgbaFrameBuffer(std::vector<float>* px, const Imath::Box2i& dw) {
     const size_t w = static_cast<size_t>(dw.max.x - dw.min.x + 1);
     const size_t xStride = kChannels * sizeof(float), yStride = xStride * w;
-    // OpenEXR addresses pixel (x, y) at base + x * xStride + y * yStride.
-    char* origin = reinterpret_cast<char*>(px->data()) -
-                   static_cast<std::ptrdiff_t>(static_cast<size_t>(dw.min.x) * xStride +
-                                               static_cast<size_t>(dw.min.y) * yStride);
+    // The data window's origin at the buffer's start (Slice::Make: no pointer arithmetic
+    // outside the buffer, whatever origin a file claims).
     Imf::FrameBuffer fb;
     for (size_t c = 0; c < kChannels; ++c)
-        fb.insert(kChannelNames[c], Imf::Slice(Imf::FLOAT, origin + c * sizeof(float), xStride,
-                                               yStride, 1, 1, c == 3 ? 1.0 : 0.0));
+        fb.insert(kChannelNames[c], Imf::Slice::Make(Imf::FLOAT, px->data() + c, dw, xStride,
+                                                     yStride, 1, 1, c == 3 ? 1.0 : 0.0));
     return fb;
 }
 

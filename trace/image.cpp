@@ -90,13 +90,12 @@ FloatImage ReadExr(const std::string& path) {
         image = FloatImage(w, h, channels);
         Imf::FrameBuffer frame;
         const size_t xStride = sizeof(float) * static_cast<size_t>(channels);
-        char* base = reinterpret_cast<char*>(image.data.data()) -
-                     (static_cast<ptrdiff_t>(dw.min.x) + static_cast<ptrdiff_t>(dw.min.y) * w) *
-                         static_cast<ptrdiff_t>(xStride);
+        // Slice::Make places the data window's origin at the buffer's start without pointer
+        // arithmetic outside it (any origin a file claims).
         for (int c = 0; c < channels; ++c)
             frame.insert(ChannelName(channels, c),
-                         Imf::Slice(Imf::FLOAT, base + sizeof(float) * static_cast<size_t>(c),
-                                    xStride, xStride * static_cast<size_t>(w)));
+                         Imf::Slice::Make(Imf::FLOAT, image.data.data() + c, dw, xStride,
+                                          xStride * static_cast<size_t>(w)));
         file.setFrameBuffer(frame);
         file.readPixels(dw.min.y, dw.max.y);
     } catch (const base::InputError&) {
