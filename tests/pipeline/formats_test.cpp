@@ -180,16 +180,22 @@ TEST(TraceManifest, OldAndMalformedFilesRefusedNamingTheFile) {
     fs::remove_all(dir);
 }
 
-TEST(PemManifest, RoundTripsFromATrace) {
-    const fs::path dir = FreshDir("pem_manifest");
+// A trace of the mirror sphere at 64x48 (spp × spp), one sample, one mirror-only group.
+TraceManifest SmallTrace(const fs::path& dir, int spp) {
     TraceManifest t;
     t.dir = (dir / "trace").string();
     t.scene = SceneForStorage(t.dir, kMirrorSphere);
     t.sceneGiven = kMirrorSphere;
-    t.width = 64, t.height = 48, t.spp = 2;
+    t.width = 64, t.height = 48, t.spp = spp;
     t.views = {{OddCamera(), 0, 0, {}, {}, {}, {}, {}, {}, {}, {}}};
     t.groups = {SomeGroup(1)};  // a mirror-only group, the scene's first
     t.groups[0].index = 0;
+    return t;
+}
+
+TEST(PemManifest, RoundTripsFromATrace) {
+    const fs::path dir = FreshDir("pem_manifest");
+    const TraceManifest t = SmallTrace(dir, 2);
     PemManifest m = PemManifestFor(t, (dir / "pem").string(), 32, false, {});
     fs::create_directories(m.dir);
     WritePemManifest(m);
@@ -210,14 +216,7 @@ TEST(PemManifest, RoundTripsFromATrace) {
 
 TEST(PemManifest, HardwareRoundTripsAndImpossibleAnisotropyIsRefused) {
     const fs::path dir = FreshDir("pem_manifest_hw");
-    TraceManifest t;
-    t.dir = (dir / "trace").string();
-    t.scene = SceneForStorage(t.dir, kMirrorSphere);
-    t.sceneGiven = kMirrorSphere;
-    t.width = 64, t.height = 48, t.spp = 1;
-    t.views = {{OddCamera(), 0, 0, {}, {}, {}, {}, {}, {}, {}, {}}};
-    t.groups = {SomeGroup(1)};
-    t.groups[0].index = 0;
+    const TraceManifest t = SmallTrace(dir, 1);
     PemManifest m = PemManifestFor(t, (dir / "pem").string(), 32, false, {},
                                    runtime::MapHardware{"exact-lod", 8.0f});
     fs::create_directories(m.dir);
