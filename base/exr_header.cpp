@@ -1,52 +1,55 @@
 // SPDX-License-Identifier: MIT
 #include "base/exr_header.h"
 
-#include <algorithm>
-#include <fstream>
-#include <iterator>
+#include <openexr.h>
 
 #include "base/input_error.h"
 
 namespace pem::base {
 
+namespace {
+
+// The first error message OpenEXRCore gives for the file (its own, more precise than the code's).
+void KeepFirstMessage(exr_const_context_t context, exr_result_t, const char* message) {
+    void* user = nullptr;
+    exr_get_user_data(context, &user);
+    auto* out = static_cast<std::string*>(user);
+    if (out && out->empty() && message) *out = message;
+}
+
+}  // namespace
+
 void CheckExrHeader(const std::string& path) {
-    // Step 1: the first 64 KiB (a header rarely needs more; then the whole file).
-    std::ifstream in(path, std::ios::binary | std::ios::ate);
-    if (!in) throw InputError(path, "cannot open file");
-    const size_t total = static_cast<size_t>(in.tellg());
-    std::string bytes(std::min<size_t>(total, size_t{1} << 16), '\0');
-    in.seekg(0);
-    in.read(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-    const auto needAll = [&] {
-        if (bytes.size() == total) return false;
-        bytes.resize(total);
-        in.read(bytes.data() + (size_t{1} << 16), static_cast<std::streamsize>(total - (1u << 16)));
-        return true;
-    };
-    if (total < 8 || bytes.compare(0, 4, "\x76\x2f\x31\x01") != 0)
-        throw InputError(path, "not an OpenEXR file");
-    // Step 2: attributes (name\0 type\0 int32 size, little-endian, value) until an empty name.
-    size_t at = 8;
-    const auto cString = [&] {
-        size_t end = bytes.find('\0', at);
-        while (end == std::string::npos && needAll()) end = bytes.find('\0', at);
-        if (end == std::string::npos) throw InputError(path, "header ends early");
-        const size_t length = end - at;
-        at = end + 1;
-        return length;
-    };
-    while (cString() != 0) {
-        cString();  // the type name
-        if (total - at < 4) throw InputError(path, "header ends early");
-        if (bytes.size() - at < 4) needAll();
-        uint32_t size = 0;
-        for (int k = 3; k >= 0; --k)
-            size = (size << 8) | static_cast<uint8_t>(bytes[at + static_cast<size_t>(k)]);
-        at += 4;
-        if (size > total - at) throw InputError(path, "a header attribute is longer than the file");
-        at += size;
-        if (at >= bytes.size()) needAll();
+    // Step 1: OpenEXRCore parses and validates every header (sizes checked against the file and
+    // against the image and tile limits) without reading pixels.
+    std::string message;
+    exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
+    init.error_handler_fn = KeepFirstMessage;
+    init.user_data = &message;
+    init.max_image_width = init.max_image_height = kMaxExrSide;
+    init.max_tile_width = init.max_tile_height = kMaxExrSide;
+    init.flags = EXR_CONTEXT_FLAG_STRICT_HEADER;
+    exr_context_t context = nullptr;
+    const exr_result_t started = exr_start_read(&context, path.c_str(), &init);
+    // Step 2: every part's data window within kMaxExrPixels.
+    int parts = 0;
+    bool windowsFit = true;
+    int64_t width = 0, height = 0;
+    if (started == EXR_ERR_SUCCESS && exr_get_count(context, &parts) == EXR_ERR_SUCCESS) {
+        for (int p = 0; p < parts; ++p) {
+            exr_attr_box2i_t dw{};
+            if (exr_get_data_window(context, p, &dw) != EXR_ERR_SUCCESS) continue;
+            width = int64_t{dw.max.x} - dw.min.x + 1, height = int64_t{dw.max.y} - dw.min.y + 1;
+            windowsFit &= width >= 1 && height >= 1 && width <= kMaxExrPixels / height;
+        }
     }
+    exr_finish(&context);
+    if (started != EXR_ERR_SUCCESS)
+        throw InputError(
+            path,
+            "not a valid OpenEXR file: " +
+                (message.empty() ? std::string(exr_get_default_error_message(started)) : message));
+    if (!windowsFit) CheckExrSize(path, width, height);
 }
 
 void CheckExrSize(const std::string& path, int64_t width, int64_t height) {
