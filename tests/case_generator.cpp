@@ -221,6 +221,28 @@ void Spheres(std::vector<NamedCase>* out) {
     }
 }
 
+glm::vec4 RandomColour(Rng* rng);
+
+// 24 random triangles whose directions cluster around a cube corner (+-1, +-1, +-1) or an edge
+// midpoint, perturbed per vertex; white, or a random colour per vertex.
+Pass EdgeCornerTriangles(Rng* rng, bool colours) {
+    Pass p;
+    for (int t = 0; t < 24; ++t) {
+        glm::vec3 base(rng->Int(2) ? 1.0f : -1.0f, rng->Int(2) ? 1.0f : -1.0f,
+                       rng->Int(2) ? 1.0f : -1.0f);
+        if (rng->Int(2)) base[rng->Int(3)] = 0.0f;
+        for (int v = 0; v < 3; ++v) {
+            const glm::vec4 pos(rng->Uniform(-1.2f, 1.2f), rng->Uniform(-1.2f, 1.2f),
+                                rng->Uniform(-0.5f, 0.5f), rng->Uniform(0.8f, 1.5f));
+            const glm::vec3 d =
+                base + glm::vec3(rng->Uniform(-0.3f, 0.3f), rng->Uniform(-0.3f, 0.3f),
+                                 rng->Uniform(-0.3f, 0.3f));
+            p.vertices.push_back(V(pos, d, colours ? RandomColour(rng) : glm::vec4(1.0f)));
+        }
+    }
+    return p;
+}
+
 // Random triangles whose directions cluster around cube edges and corners. ----------------------
 void EdgesAndCorners(std::vector<NamedCase>* out) {
     Rng rng{7};
@@ -231,22 +253,7 @@ void EdgesAndCorners(std::vector<NamedCase>* out) {
         Frame f = NewFrame(64, 64);
         f.textures.push_back(Cube(size, Sampler(Filter::Linear, mip, Filter::Linear, seamless),
                                   1000 + static_cast<uint64_t>(k)));
-        Pass p;
-        for (int t = 0; t < 24; ++t) {
-            // A corner (+-1, +-1, +-1) or an edge midpoint, perturbed per vertex.
-            glm::vec3 base(rng.Int(2) ? 1.0f : -1.0f, rng.Int(2) ? 1.0f : -1.0f,
-                           rng.Int(2) ? 1.0f : -1.0f);
-            if (rng.Int(2)) base[rng.Int(3)] = 0.0f;
-            for (int v = 0; v < 3; ++v) {
-                const glm::vec4 pos(rng.Uniform(-1.2f, 1.2f), rng.Uniform(-1.2f, 1.2f),
-                                    rng.Uniform(-0.5f, 0.5f), rng.Uniform(0.8f, 1.5f));
-                const glm::vec3 d =
-                    base + glm::vec3(rng.Uniform(-0.3f, 0.3f), rng.Uniform(-0.3f, 0.3f),
-                                     rng.Uniform(-0.3f, 0.3f));
-                p.vertices.push_back(V(pos, d, glm::vec4(1.0f)));
-            }
-        }
-        f.passes.push_back(p);
+        f.passes.push_back(EdgeCornerTriangles(&rng, false));
         out->push_back({"edges_corners_" + std::to_string(k) + (seamless ? "_seamless" : "_plain") +
                             "_n" + std::to_string(size),
                         f});
@@ -1401,21 +1408,7 @@ void AnisoCubes(std::vector<NamedCase>* out) {
         f.textures.push_back(
             Cube(size, Aniso(Filter::Linear, MipFilter::Linear, Filter::Linear, 16.0f, seamless),
                  ++seed));
-        Pass p;
-        for (int t = 0; t < 24; ++t) {
-            glm::vec3 base(rng.Int(2) ? 1.0f : -1.0f, rng.Int(2) ? 1.0f : -1.0f,
-                           rng.Int(2) ? 1.0f : -1.0f);
-            if (rng.Int(2)) base[rng.Int(3)] = 0.0f;
-            for (int v = 0; v < 3; ++v) {
-                const glm::vec4 pos(rng.Uniform(-1.2f, 1.2f), rng.Uniform(-1.2f, 1.2f),
-                                    rng.Uniform(-0.5f, 0.5f), rng.Uniform(0.8f, 1.5f));
-                const glm::vec3 d =
-                    base + glm::vec3(rng.Uniform(-0.3f, 0.3f), rng.Uniform(-0.3f, 0.3f),
-                                     rng.Uniform(-0.3f, 0.3f));
-                p.vertices.push_back(V(pos, d, RandomColour(&rng)));
-            }
-        }
-        f.passes.push_back(p);
+        f.passes.push_back(EdgeCornerTriangles(&rng, true));
         out->push_back(
             {"aniso_edges_corners_n" + std::to_string(size) + (seamless ? "_seamless" : "_plain"),
              f});
