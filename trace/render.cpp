@@ -37,19 +37,21 @@ struct RowTracer {
     std::vector<glm::vec2> offsets;  // SampleOffset per sample of a pixel
     std::vector<glm::vec3> radiance, irradiance, leafIrradiance, stack;
     std::vector<size_t> diffuse, taped, tapeStart;
+    std::vector<glm::ivec2> row;
     std::vector<Tracer::DiffusePoint> points;
     Tracer::RadianceTape tape;
 
-    void Trace(int y, FrameResult& out, RayCounts& counts) {
+    // Every sample of the given pixels: camera rays, then their radiance (lens samples black in
+    // the Surroundings model) into `radiance`, pixels × k² in sample order.
+    void TraceSamples(std::span<const glm::ivec2> pixels, RayCounts& counts) {
         const int spp = k * k;
-        const size_t n = static_cast<size_t>(camera.width) * static_cast<size_t>(spp);
+        const size_t n = pixels.size() * static_cast<size_t>(spp);
         rays.resize(n), hits.resize(n), radiance.assign(n, glm::vec3(0.0f));
         diffuse.clear(), points.clear(), taped.clear(), tapeStart.clear(), tape.Clear();
         offsets.resize(static_cast<size_t>(spp));
         for (int s = 0; s < spp; ++s) offsets[static_cast<size_t>(s)] = SampleOffset(k, s);
-        const float fy = static_cast<float>(y);
-        for (size_t i = 0, x = 0; x < static_cast<size_t>(camera.width); ++x) {
-            const float fx = static_cast<float>(x);
+        for (size_t i = 0, p = 0; p < pixels.size(); ++p) {
+            const float fx = static_cast<float>(pixels[p].x), fy = static_cast<float>(pixels[p].y);
             for (const glm::vec2& o : offsets) rays[i++] = pixelRays(fx + o.x, fy + o.y);
         }
         tracer.IntersectCamera(rays, hits, counts);
@@ -83,6 +85,14 @@ struct RowTracer {
             radiance[taped[j]] =
                 Tracer::EvalTape(ops.subspan(tapeStart[j], tapeStart[j + 1] - tapeStart[j]),
                                  tape.points, leafIrradiance, stack);
+    }
+
+    // One image row into `out`.
+    void Trace(int y, FrameResult& out, RayCounts& counts) {
+        const int spp = k * k;
+        row.resize(static_cast<size_t>(camera.width));
+        for (int x = 0; x < camera.width; ++x) row[static_cast<size_t>(x)] = glm::ivec2(x, y);
+        TraceSamples(row, counts);
         const float invSamples = 1.0f / static_cast<float>(spp);
         for (int x = 0; x < camera.width; ++x) {
             glm::vec3 sum(0.0f);
@@ -138,6 +148,39 @@ FrameResult RenderFrame(const Tracer& tracer, const raster::Camera& camera, int 
         progress);
     for (const RayCounts& c : rowCounts) result.counts += c;
     return result;
+}
+
+PixelSamples RenderPixels(const Tracer& tracer, const raster::Camera& camera, int k,
+                          const std::vector<glm::ivec2>& pixels, int threads) {
+    const size_t spp = static_cast<size_t>(k) * static_cast<size_t>(k);
+    PixelSamples out;
+    out.surroundings.assign(pixels.size(), glm::vec3(0.0f));
+    out.groups.assign(pixels.size() * spp, -1);
+    // Runs of kRun pixels, each traced by one RowTracer of its thread into its own slots.
+    constexpr size_t kRun = 64;
+    const size_t runs = (pixels.size() + kRun - 1) / kRun;
+    std::vector<RayCounts> runCounts(runs);
+    const raster::PixelRays pixelRays(camera);
+    base::ParallelFor(static_cast<int>(runs), threads, [&](int r) {
+        RowTracer t(tracer, camera, pixelRays, k, Model::Surroundings);
+        const size_t first = static_cast<size_t>(r) * kRun;
+        const size_t count = std::min(kRun, pixels.size() - first);
+        t.TraceSamples(std::span<const glm::ivec2>(pixels).subspan(first, count),
+                       runCounts[static_cast<size_t>(r)]);
+        const float invSamples = 1.0f / static_cast<float>(spp);
+        for (size_t p = 0; p < count; ++p) {
+            glm::vec3 sum(0.0f);
+            for (size_t s = 0; s < spp; ++s) {
+                const size_t i = p * spp + s;
+                sum += t.radiance[i];
+                out.groups[(first + p) * spp + s] =
+                    t.hits[i].valid ? tracer.GroupOf(t.hits[i].object) : -1;
+            }
+            out.surroundings[first + p] = sum * invSamples;
+        }
+    });
+    for (const RayCounts& c : runCounts) out.counts += c;
+    return out;
 }
 
 ImageError CompareImages(const FloatImage& a, const FloatImage& b, const FloatImage& mask,

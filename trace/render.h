@@ -12,6 +12,8 @@
 #pragma once
 
 #include <functional>
+#include <glm/glm.hpp>
+#include <vector>
 
 #include "raster/camera.h"
 #include "trace/image.h"
@@ -33,6 +35,18 @@ struct FrameResult {
 
 FrameResult RenderFrame(const Tracer& tracer, const raster::Camera& camera, int k, Model model,
                         int threads, const std::function<void(int, int)>& progress = {});
+
+// The Surroundings model at k×k for the listed pixels only (a hybrid frame's silhouettes,
+// renderer.h): per pixel the box-filtered radiance of its samples with the lens samples black,
+// and per sample (pixel-major, SampleOffset order) the lens group its camera ray hits (-1: none).
+// Each value is the one RenderFrame gives that sample; any thread count gives the same bytes.
+struct PixelSamples {
+    std::vector<glm::vec3> surroundings;  // per pixel
+    std::vector<int> groups;              // per pixel, k² samples
+    RayCounts counts;
+};
+PixelSamples RenderPixels(const Tracer& tracer, const raster::Camera& camera, int k,
+                          const std::vector<glm::ivec2>& pixels, int threads);
 
 // Mean squared error and PSNR between two RGB images over the pixels where mask (one channel,
 // may be empty = all pixels) is > 0. Values are clamped to [0, 1] first (display range, peak 1)

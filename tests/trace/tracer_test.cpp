@@ -107,6 +107,42 @@ TEST(Tracer, SurroundingsAreTheFullTreeOffTheLenses) {
     EXPECT_EQ(frame.counts.Total(), counts.Total() + static_cast<uint64_t>(lens));
 }
 
+// RenderPixels (a hybrid frame's silhouettes): at k×k samples, each listed pixel is the
+// single-ray full tree summed over its samples that miss the lens groups (lens samples black),
+// and each sample's group is the one its camera ray sees.
+TEST(Tracer, RenderPixelsAreTheSurroundingsSampleBySample) {
+    const TracedScene traced(kHybrid);
+    const auto& [scene, device, embree, tracer] = traced;
+    const raster::Camera cam = CameraForSize(*scene.camera, 64, 48);
+    const int k = 3, spp = k * k;
+    std::vector<glm::ivec2> pixels;
+    for (int y = 0; y < cam.height; y += 3)
+        for (int x = (y / 3) % 2; x < cam.width; x += 2) pixels.emplace_back(x, y);
+    for (int threads : {1, 2}) {
+        const PixelSamples got = RenderPixels(tracer, cam, k, pixels, threads);
+        ASSERT_EQ(got.surroundings.size(), pixels.size());
+        ASSERT_EQ(got.groups.size(), pixels.size() * static_cast<size_t>(spp));
+        int lens = 0;
+        for (size_t i = 0; i < pixels.size(); ++i) {
+            glm::vec3 sum(0.0f);
+            RayCounts counts;
+            for (int s = 0; s < spp; ++s) {
+                const glm::vec2 p = SamplePosition(pixels[i].x, pixels[i].y, k, s);
+                const Ray ray = raster::PixelRay(cam, p.x, p.y);
+                const Hit hit = embree.Intersect(ray);
+                const int group = hit.valid ? tracer.GroupOf(hit.object) : -1;
+                EXPECT_EQ(got.groups[i * static_cast<size_t>(spp) + static_cast<size_t>(s)], group);
+                if (group < 0) sum += tracer.Radiance(ray, counts);
+                lens += group >= 0;
+            }
+            const glm::vec3 expected = sum * (1.0f / static_cast<float>(spp));
+            EXPECT_EQ(std::memcmp(&got.surroundings[i][0], &expected[0], 3 * sizeof(float)), 0)
+                << pixels[i].x << "," << pixels[i].y << " threads " << threads;
+        }
+        EXPECT_GT(lens, 50);
+    }
+}
+
 TEST(Tracer, GreedyEqualsFullTreeForPureMirror) {
     const Scene scene = LoadScene(kPem);  // only a mirror teapot among diffuse objects
     const EmbreeDevice device({1, "auto"});
