@@ -25,6 +25,7 @@
 #include "runtime/convex_hull.h"
 #include "runtime/lens_paths.h"
 #include "runtime/mirror_geometry.h"
+#include "runtime/supersampling.h"
 #include "runtime/texgen.h"
 #include "trace/embree_scene.h"
 #include "trace/image.h"
@@ -177,24 +178,25 @@ struct StackedRows {
     std::vector<std::pair<raster::Frame, int64_t>> own;  // the sample's own frames, first row
 };
 
-StackedRows StackRows(const std::vector<MapInput>& inputs, int w, int h,
+StackedRows StackRows(const std::vector<MapInput>& inputs, int w, int h, int k,
                       const InferJobOptions& opt) {
     StackedRows s;
     // The profile's texel selection with exact weights (its LOD rule, no rounding).
     raster::RenderOptions ro = raster::ProfileNamed(opt.hardware.profile).options;
     ro.profile = raster::Profile::Linear;
     ro.threads = opt.threads;
-    for (size_t k = 0; k < inputs.size(); ++k) {
-        raster::Frame f = UnknownFrame(w, h, opt.res, opt.hardware.Sampler(), inputs[k]);
-        raster::RenderingMatrix a = raster::BuildRenderingMatrix(raster::PreparedFrame(f), ro);
-        if (k == 0) {
+    for (size_t i = 0; i < inputs.size(); ++i) {
+        raster::Frame f = UnknownFrame(k * w, k * h, opt.res, opt.hardware.Sampler(), inputs[i]);
+        raster::RenderingMatrix a = runtime::BoxFilterRows(
+            raster::BuildRenderingMatrix(raster::PreparedFrame(f), ro), w, h, k);
+        if (i == 0) {
             s.a = std::move(a);
             s.frame = f;
         } else {
             AppendRows(&s.a, a);
         }
-        if (inputs[k].own) s.own.emplace_back(f, k == 0 ? 0 : s.a.rows - a.rows);
-        AppendTarget(inputs[k], w, h, opt.hdr, &s.target);
+        if (inputs[i].own) s.own.emplace_back(f, i == 0 ? 0 : s.a.rows - a.rows);
+        AppendTarget(inputs[i], w, h, opt.hdr, &s.target);
     }
     return s;
 }
@@ -204,7 +206,8 @@ StackedRows StackRows(const std::vector<MapInput>& inputs, int w, int h,
 // The 8-bit copy of a map through the llvmpipe profile on the sample's own rows of the mask:
 // the error the hardware shows.
 double Rmse8(const infer::CubeMapF& m, const StackedRows& s, const infer::LinearSystem& sys,
-             int64_t frameRows, const std::string& profile, int threads) {
+             int width, int height, int k, const std::string& profile, int threads) {
+    const int64_t frameRows = int64_t{4} * width * height;
     const raster::Texture tex8 = infer::ToTexture8(m, s.frame.textures[0].sampler);
     raster::RenderOptions fo = raster::ProfileNamed(profile).options;
     fo.threads = threads;
@@ -213,11 +216,15 @@ double Rmse8(const infer::CubeMapF& m, const StackedRows& s, const infer::Linear
         raster::Frame f8 = ownFrame;
         f8.textures[0] = tex8;
         const raster::RenderResult rr = raster::Render(raster::PreparedFrame(f8), fo);
+        const std::vector<uint8_t> covered =
+            runtime::CoveredSubpixels(rr.depth, runtime::kLensDepth);
+        double rgba[4];
         for (int64_t r : sys.imageRowOf) {
             if (r < first || r >= first + frameRows) continue;  // this observation's rows
             weight += s.target.confidence[static_cast<size_t>(r)];
-            const double d = rr.image8.rgba[static_cast<size_t>(r - first)] / 255.0 -
-                             s.target.b[static_cast<size_t>(r)];
+            runtime::CoveredMean(rr.image8, covered, width, k,
+                                 static_cast<uint32_t>((r - first) / 4), rgba);
+            const double d = rgba[(r - first) % 4] - s.target.b[static_cast<size_t>(r)];
             sum += s.target.confidence[static_cast<size_t>(r)] * d * d;
         }
     }
@@ -237,7 +244,7 @@ MapReport SolveMap(const std::vector<MapInput>& inputs, const InferJobOptions& o
                    const TraceManifest& tm, const std::string& dir, MapReport rep) {
     // Step 1: the rendering matrices of the texgen passes and the stacked system.
     const auto t0 = Clock::now();
-    const StackedRows s = StackRows(inputs, tm.width, tm.height, opt);
+    const StackedRows s = StackRows(inputs, tm.width, tm.height, tm.spp, opt);
     rep.matrixSeconds = Since(t0);
     const infer::LinearSystem sys =
         infer::BuildSystem(s.a, s.frame, 0, s.target, opt.weights, opt.system);
@@ -263,9 +270,8 @@ MapReport SolveMap(const std::vector<MapInput>& inputs, const InferJobOptions& o
         rep.texelMin = std::min(rep.texelMin, v), rep.texelMax = std::max(rep.texelMax, v);
     rep.fillSeconds = Since(tFill);
     // Step 4: rmse_8bit (and the direct optimum's, when asked and small enough).
-    const int64_t frameRows = int64_t{4} * tm.width * tm.height;
     const auto tRender = Clock::now();
-    rep.rmse8 = Rmse8(map, s, sys, frameRows, opt.hardware.profile, opt.threads);
+    rep.rmse8 = Rmse8(map, s, sys, tm.width, tm.height, tm.spp, opt.hardware.profile, opt.threads);
     rep.renderSeconds = Since(tRender);
     if (opt.direct && sys.Cols() <= opt.directMaxCols) {
         const infer::SolveResult d =
@@ -273,7 +279,7 @@ MapReport SolveMap(const std::vector<MapInput>& inputs, const InferJobOptions& o
         rep.directSeconds = d.seconds;
         rep.directRmse8 =
             Rmse8(infer::CubeMapFromSolution(infer::FillUnobserved(sys, d.x), sys.layout), s, sys,
-                  frameRows, opt.hardware.profile, opt.threads);
+                  tm.width, tm.height, tm.spp, opt.hardware.profile, opt.threads);
     }
     // Step 5: files.
     const auto tWrite = Clock::now();

@@ -18,7 +18,9 @@
 #include "runtime/convex_hull.h"
 #include "runtime/lens_paths.h"
 #include "runtime/mirror_geometry.h"
+#include "runtime/silhouettes.h"
 #include "runtime/static_em.h"
+#include "runtime/supersampling.h"
 #include "runtime/texgen.h"
 #include "trace/embree_scene.h"
 #include "trace/render.h"
@@ -40,15 +42,33 @@ raster::BlendState PremultipliedOver() {
     return b;
 }
 
-// Adds weight · frame / 255 to acc at the listed pixels (RGB per listed pixel); the 256 terms
-// are computed once (the same expression, so the same bits).
-void Accumulate(const raster::Image8& img, double weight, const std::vector<uint32_t>& pixels,
-                std::vector<double>* acc) {
-    std::array<double, 256> term;
-    for (int b = 0; b < 256; ++b) term[static_cast<size_t>(b)] = weight * b / 255.0;
-    for (size_t k = 0; k < pixels.size(); ++k)
-        for (size_t c = 0; c < 3; ++c)
-            (*acc)[3 * k + c] += term[img.rgba[4 * size_t{pixels[k]} + c]];
+// Adds weight · (the mean of the covered subpixels of a k× frame, supersampling.h) to acc at
+// the listed pixels (RGB per listed pixel).
+void Accumulate(const raster::Image8& img, const std::vector<uint8_t>& covered, int width, int k,
+                double weight, const std::vector<uint32_t>& pixels, std::vector<double>* acc) {
+    double rgba[4];
+    for (size_t p = 0; p < pixels.size(); ++p) {
+        CoveredMean(img, covered, width, k, pixels[p], rgba);
+        for (size_t c = 0; c < 3; ++c) (*acc)[3 * p + c] += weight * rgba[c];
+    }
+}
+
+// Adds weight · frame / 255 at every subpixel of the border pixels to the group's samples
+// (silhouettes.h), and marks the covered ones.
+void AccumulateBorder(const raster::Image8& img, const std::vector<uint8_t>& covered, int width,
+                      int k, double weight, const std::vector<glm::ivec2>& border,
+                      GroupSamples* samples) {
+    const size_t kk = static_cast<size_t>(k) * static_cast<size_t>(k);
+    samples->rgb.resize(border.size() * kk * 3, 0.0);
+    samples->covered.resize(border.size() * kk, 0);
+    for (size_t b = 0; b < border.size(); ++b)
+        for (size_t s = 0; s < kk; ++s) {
+            const uint32_t pixel = static_cast<uint32_t>(border[b].y * width + border[b].x);
+            const size_t i = SubpixelIndex(pixel, width, k, static_cast<int>(s));
+            samples->covered[b * kk + s] = covered[i];
+            for (size_t c = 0; c < 3; ++c)
+                samples->rgb[3 * (b * kk + s) + c] += weight * (img.rgba[4 * i + c] / 255.0);
+        }
 }
 
 // What a PreparedFrame needs of a texture it is given prepared: kind, size, sampler and level
@@ -97,9 +117,11 @@ void CountPaths(const LensPaths& lp, FrameStats* stats) {
 // samples' passes share their setup), then added in the order they were built.
 class FrameBatch {
   public:
-    FrameBatch(const raster::Camera& camera, const raster::RenderOptions& hardware, int threads,
-               PreparedCache* prepared, FrameStats* stats)
+    // k: subpixels per pixel side (supersampling.h).
+    FrameBatch(const raster::Camera& camera, int k, const raster::RenderOptions& hardware,
+               int threads, PreparedCache* prepared, FrameStats* stats)
         : camera_(camera),
+          k_(k),
           hardware_(hardware),
           threads_(threads),
           prepared_(prepared),
@@ -116,8 +138,8 @@ class FrameBatch {
         if (sameAs >= 0) frame.passes = frames_[static_cast<size_t>(sameAs)].passes;
         auto& frameReady = ready_.emplace_back();
         weights_.push_back(weight);
-        frame.width = camera_.width;
-        frame.height = camera_.height;
+        frame.width = k_ * camera_.width;
+        frame.height = k_ * camera_.height;
         frame.depthClamp = true;
         frame.depth = kLensDepth;
         frame.passes.resize(maps.size());  // no-op when copied
@@ -137,8 +159,11 @@ class FrameBatch {
         return static_cast<int>(frames_.size()) - 1;
     }
 
-    // Renders every frame and adds weight · frame at the listed pixels to acc.
-    void Draw(const std::vector<uint32_t>& pixels, std::vector<double>* acc) {
+    // Renders every frame and adds weight · frame at the listed pixels to acc, and at the
+    // border pixels' subpixels to `border` (when given). The frames share their geometry, so
+    // the first one's depth buffer says which subpixels the group covers.
+    void Draw(const std::vector<uint32_t>& pixels, std::vector<double>* acc,
+              const std::vector<glm::ivec2>& borderPixels, GroupSamples* border) {
         const auto t0 = Clock::now();
         std::vector<raster::PreparedFrame> pf;
         pf.reserve(frames_.size());
@@ -149,7 +174,14 @@ class FrameBatch {
         raster::RenderOptions ro = hardware_;
         ro.threads = threads_;
         const std::vector<raster::RenderResult> rr = raster::RenderFrames(ptrs, ro);
-        for (size_t f = 0; f < rr.size(); ++f) Accumulate(rr[f].image8, weights_[f], pixels, acc);
+        const std::vector<uint8_t> covered =
+            rr.empty() ? std::vector<uint8_t>() : CoveredSubpixels(rr[0].depth, kLensDepth);
+        for (size_t f = 0; f < rr.size(); ++f) {
+            Accumulate(rr[f].image8, covered, camera_.width, k_, weights_[f], pixels, acc);
+            if (border)
+                AccumulateBorder(rr[f].image8, covered, camera_.width, k_, weights_[f],
+                                 borderPixels, border);
+        }
         stats_->rasterSeconds += Since(t0);
     }
 
@@ -162,6 +194,7 @@ class FrameBatch {
     }
 
     const raster::Camera& camera_;
+    int k_;
     raster::RenderOptions hardware_;
     int threads_;
     PreparedCache* prepared_;
@@ -245,9 +278,16 @@ struct Renderer::Impl {
         const std::vector<double>& weights;
         const std::vector<uint32_t>& pixels;
         std::vector<double>* acc;
+        int k;                                  // subpixels per pixel side
+        const std::vector<glm::ivec2>* border;  // the frame's border pixels (k > 1)
+        GroupSamples* borderSamples;            // this group's colours there, or null
         FrameStats* stats;
     };
     GroupGeometry Geometry(const GroupDraw& d, bool pemSplit);
+    // Subpixels per pixel side of the lens frames: the setting, else the traced images' K.
+    int Subpixels(const RenderSettings& s) const {
+        return s.subpixels > 0 ? s.subpixels : maps.spp;
+    }
     raster::RenderOptions Hardware(const RenderSettings& s) const {
         return raster::ProfileNamed(s.profile.empty() ? maps.hardware.profile : s.profile).options;
     }
@@ -308,13 +348,13 @@ void Renderer::Impl::DrawStatic(const GroupDraw& d, const GroupGeometry& gg) {
                                                   threads))
                  .first;
     }
-    FrameBatch batch(d.camera, Hardware(d.s), d.s.threads, &prepared, d.stats);
+    FrameBatch batch(d.camera, d.k, Hardware(d.s), d.s.threads, &prepared, d.stats);
     for (int term = 0; term < maps.groups[static_cast<size_t>(d.group)].Terms(); ++term) {
         std::vector<glm::vec3> dirs(gg.exits[term].size());
         for (size_t v = 0; v < dirs.size(); ++v) dirs[v] = gg.exits[term][v].dir;
         batch.Add({&it->second}, {dirs}, gg.exits[term], 1.0, {&gg.all});
     }
-    batch.Draw(d.pixels, d.acc);
+    batch.Draw(d.pixels, d.acc, *d.border, d.borderSamples);
 }
 
 // Hybrid, layered PEM, single-layer PEM and the PEM split: per (sample, term) one frame of the
@@ -333,7 +373,7 @@ void Renderer::Impl::DrawMaps(const GroupDraw& d, const GroupGeometry& gg, bool 
         for (const LayerUse& u : uses)
             coords[term].push_back(ShellCoords(gg.exits[term], *u.shell, g.emOrigin, d.s.threads));
     d.stats->texgenSeconds += Since(t0);
-    FrameBatch batch(d.camera, Hardware(d.s), d.s.threads, &prepared, d.stats);
+    FrameBatch batch(d.camera, d.k, Hardware(d.s), d.s.threads, &prepared, d.stats);
     int firstFrameOf[2] = {-1, -1};  // per term: the first sample's frame
     for (size_t k = 0; k < d.samples.size(); ++k) {
         for (int term = 0; term < g.Terms(); ++term) {
@@ -349,7 +389,7 @@ void Renderer::Impl::DrawMaps(const GroupDraw& d, const GroupGeometry& gg, bool 
             if (firstFrameOf[term] < 0) firstFrameOf[term] = f;
         }
     }
-    batch.Draw(d.pixels, d.acc);
+    batch.Draw(d.pixels, d.acc, *d.border, d.borderSamples);
 }
 
 std::vector<LayerUse> Renderer::Impl::Uses(const GroupDraw& d, bool pemSplit) const {
@@ -448,6 +488,19 @@ RenderedFrame RenderTraced(const trace::Tracer& tracer, const raster::Camera& ca
     return out;
 }
 
+// A k× float frame box-filtered over its covered subpixels (supersampling.h).
+raster::ImageF BoxFiltered(const raster::RenderResult& rr, const raster::Camera& camera, int k) {
+    const std::vector<uint8_t> covered = CoveredSubpixels(rr.depth, kLensDepth);
+    raster::ImageF out{camera.width, camera.height, {}};
+    out.rgba.resize(4 * static_cast<size_t>(camera.width) * static_cast<size_t>(camera.height));
+    double rgba[4];
+    for (uint32_t p = 0; p < out.rgba.size() / 4; ++p) {
+        CoveredMean(rr.imageF, covered, camera.width, k, p, rgba);
+        for (size_t c = 0; c < 4; ++c) out.rgba[4 * p + c] = static_cast<float>(rgba[c]);
+    }
+    return out;
+}
+
 }  // namespace
 
 std::vector<std::vector<raster::ImageF>> Renderer::LayerImages(const raster::Camera& camera,
@@ -459,7 +512,10 @@ std::vector<std::vector<raster::ImageF>> Renderer::LayerImages(const raster::Cam
     const std::vector<int> samples{sample};
     const std::vector<double> weights{1.0};
     const std::vector<uint32_t> pixels;
-    const Impl::GroupDraw d{camera, s, group, samples, weights, pixels, &acc, &stats};
+    const std::vector<glm::ivec2> border;
+    const int sub = m.Subpixels(s);
+    const Impl::GroupDraw d{camera, s,   group,   samples, weights, pixels,
+                            &acc,   sub, &border, nullptr, &stats};
     const LensGroupEm& g = m.maps.groups[static_cast<size_t>(group)];
     const bool pemSplit = s.method == Method::Pem && g.pem;
     const GroupGeometry gg = m.Geometry(d, pemSplit);
@@ -473,7 +529,8 @@ std::vector<std::vector<raster::ImageF>> Renderer::LayerImages(const raster::Cam
             const raster::Texture* map = m.maps.map(sample, group, uses[k].name[term]);
             if (!map) throw base::InputError(m.maps.name, "missing map " + uses[k].name[term]);
             raster::Frame frame;
-            frame.width = camera.width, frame.height = camera.height, frame.depthClamp = true;
+            frame.width = sub * camera.width, frame.height = sub * camera.height;
+            frame.depthClamp = true;
             frame.depth = kLensDepth;
             frame.textures.push_back(*map);
             frame.passes.emplace_back();
@@ -482,8 +539,8 @@ std::vector<std::vector<raster::ImageF>> Renderer::LayerImages(const raster::Cam
             po.depthTest = LayerDepthTest(true);
             FillLayerPass(geo, ShellCoords(gg.exits[term], *uses[k].shell, g.emOrigin, s.threads),
                           gg.exits[term], po, &frame.passes[0], s.threads);
-            out[static_cast<size_t>(term)].push_back(
-                raster::Render(raster::PreparedFrame(frame), ro).imageF);
+            const raster::RenderResult rr = raster::Render(raster::PreparedFrame(frame), ro);
+            out[static_cast<size_t>(term)].push_back(BoxFiltered(rr, camera, sub));
         }
     return out;
 }
@@ -510,7 +567,13 @@ RenderedFrame Renderer::Render(const raster::Camera& camera, const RenderSetting
     out.stats.backgroundSeconds = Since(tb);
     // Step 2: the two nearest viewpoint samples.
     NearestSamples(m.maps, camera.eye, &out.stats);
-    // Step 3: each lens group seen, from its maps (a group no pixel sees costs nothing).
+    // Step 3: each lens group seen, from its maps (a group no pixel sees costs nothing), drawn
+    // with k×k subpixels; at the border pixels every subpixel's colour is kept for step 4.
+    const int sub = m.Subpixels(s);
+    const std::vector<glm::ivec2> border =
+        sub > 1 ? SilhouettePixels(groupOf, camera.width, camera.height)
+                : std::vector<glm::ivec2>();
+    std::vector<GroupSamples> borderSamples(m.maps.groups.size());
     std::vector<std::vector<uint32_t>> pixelsOf(m.maps.groups.size());
     for (size_t p = 0; p < groupOf.size(); ++p)
         if (groupOf[p] >= 0)
@@ -522,8 +585,9 @@ RenderedFrame Renderer::Render(const raster::Camera& camera, const RenderSetting
             continue;
         }
         std::vector<double> acc(pixels.size() * 3, 0.0);
-        m.DrawGroup(
-            {camera, s, g, out.stats.samples, out.stats.sampleWeights, pixels, &acc, &out.stats});
+        m.DrawGroup({camera, s, g, out.stats.samples, out.stats.sampleWeights, pixels, &acc, sub,
+                     &border, border.empty() ? nullptr : &borderSamples[static_cast<size_t>(g)],
+                     &out.stats});
         for (size_t k = 0; k < pixels.size(); ++k) {
             out.lensMask[pixels[k]] = 1;
             for (size_t c = 0; c < 3; ++c)
@@ -531,6 +595,13 @@ RenderedFrame Renderer::Render(const raster::Camera& camera, const RenderSetting
                     static_cast<float>(std::min(1.0, acc[3 * k + c]));
         }
     }
+    // Step 4: the groups' borders from k×k samples of the ray tracer (silhouettes.h).
+    const auto te = Clock::now();
+    trace::RayCounts edgeRays;
+    ResolveSilhouettes(*m.tracer, camera, sub, border, groupOf, borderSamples, s.threads,
+                       &out.image, &edgeRays);
+    out.stats.backgroundRays += edgeRays.Total();
+    out.stats.backgroundSeconds += Since(te);
     out.stats.lensSeconds = out.stats.traceSeconds + out.stats.tessSeconds +
                             out.stats.texgenSeconds + out.stats.rasterSeconds;
     out.stats.totalSeconds = Since(tStart);

@@ -20,7 +20,11 @@
 // The two viewpoint samples nearest to the eye are blended by distance (w_i ∝ the other's
 // distance). The rest of the frame: one camera ray per pixel, shaded by the ray tracer (diffuse
 // direct light with shadows, environment); pixels whose camera ray first hits a group with maps
-// take that group's raster result. Timings per stage as the hybrid paper's table.
+// take that group's raster result. The groups are drawn with k×k subpixels per pixel (k = the
+// `subpixels` setting; supersampling.h) and box-filtered over the subpixels they cover; the
+// pixels on a group's border take k×k camera samples, each lens sample the group's subpixel
+// (silhouettes.h). Timings per stage as the hybrid paper's table (the border's camera samples
+// count as background).
 // Not here: files (pipeline/pem_set.h opens a PEM directory), the command line, the viewer.
 #pragma once
 
@@ -42,9 +46,10 @@ const char* ToString(Method m);
 struct RenderSettings {
     Method method = Method::Hybrid;
     double t = 5.0;     // hybrid tessellation threshold (subpixels)
-    int subpixels = 0;  // t's unit is 1/subpixels pixel; 0: the PEMs' supersampling (the
-                        // traced images' K×K, the hybrid paper's 3×3); the viewer, which
-                        // draws one sample per pixel, uses 1
+    int subpixels = 0;  // k: subpixels per pixel side of the lens frames, and t's unit
+                        // (1/k pixel); 0: the PEMs' supersampling (the traced images' K×K,
+                        // the hybrid paper's 3×3), as inferred; the viewer, which draws one
+                        // sample per pixel, uses 1
     int spp = 3;        // RayTraced: spp × spp samples per pixel
     int layers = 0;     // 0: all layers; 1: the outermost only
     int threads = 1;
