@@ -11,6 +11,8 @@
 #include <cmath>
 
 #include "base/input_error.h"
+#include "runtime/silhouettes.h"
+#include "trace/render.h"
 
 namespace pem::runtime {
 namespace {
@@ -109,6 +111,47 @@ TEST(Renderer, ConstantMapTimesFresnel) {
                     << ToString(m) << " pixel " << p << " channel " << c << ": " << px[c];
         }
     }
+}
+
+// With 3×3 subpixels, a pixel on the lens's border mixes the ray tracer's samples that miss it
+// (trace::RenderPixels, tested on its own) with the lens colour at the samples that hit it: the
+// constant map times F in [0.9, 1], weighted by those samples' share; a pixel none of whose
+// samples hits the lens is the ray tracer's alone.
+TEST(Renderer, BorderPixelsMixLensAndSurroundingsBySamples) {
+    Fixture fx;
+    for (int v : {0, 1}) {
+        fx.Set(v, "layer_0", Constant(8, 0, 0, 0, 0));
+        fx.Set(v, "layer_1", Constant(8, 128, 64, 255, 255));
+    }
+    Renderer r(fx.scene, fx.Maps(), 2);
+    const raster::Camera cam = r.SampleCamera(0);
+    RenderSettings s = Settings(Method::Hybrid);
+    s.subpixels = 3;
+    const RenderedFrame f = r.Render(cam, s);
+    const std::vector<glm::ivec2> border = SilhouettePixels(f.groupOf, cam.width, cam.height);
+    ASSERT_GT(border.size(), 20u);
+    const trace::PixelSamples traced = trace::RenderPixels(r.tracer(), cam, 3, border, 1);
+    const float map[3] = {128 / 255.0f, 64 / 255.0f, 1.0f};
+    int mixed = 0, outside = 0;
+    for (size_t b = 0; b < border.size(); ++b) {
+        int lens = 0;
+        for (size_t k = 0; k < 9; ++k) lens += traced.groups[9 * b + k] >= 0;
+        mixed += lens > 0 && lens < 9;
+        const float* px = f.image.At(border[b].x, border[b].y);
+        const glm::vec3& bg = traced.surroundings[b];
+        if (lens == 0) {
+            ++outside;
+            for (int c = 0; c < 3; ++c) EXPECT_EQ(px[c], bg[c]) << "pixel " << b;
+            continue;
+        }
+        const float share = static_cast<float>(lens) / 9.0f;
+        for (int c = 0; c < 3; ++c)
+            EXPECT_TRUE(px[c] >= bg[c] + share * (0.9f * map[c] - 1.5f / 255) &&
+                        px[c] <= bg[c] + share * (map[c] + 1.5f / 255))
+                << "pixel " << b << " (" << lens << " lens samples) channel " << c << ": " << px[c];
+    }
+    EXPECT_GT(mixed, 10);   // not vacuous: partly covered pixels
+    EXPECT_GT(outside, 0);  // and background pixels next to the lens
 }
 
 TEST(Renderer, OpaqueInnerLayerHidesTheOuterOne) {
