@@ -56,9 +56,8 @@ int CoveredMean(const raster::ImageF& image, const std::vector<uint8_t>& covered
         image, covered, width, k, pixel, [](float v) { return static_cast<double>(v); }, rgba);
 }
 
-raster::RenderingMatrix BoxFilterRows(const raster::RenderingMatrix& a, int width, int height,
-                                      int k) {
-    if (k == 1) return a;
+raster::RenderingMatrix BoxFilterRows(raster::RenderingMatrix a, int width, int height, int k) {
+    if (k == 1) return a;  // moved: no copy
     const size_t pixels = static_cast<size_t>(width) * static_cast<size_t>(height);
     raster::RenderingMatrix m;
     m.rows = static_cast<int64_t>(4 * pixels);

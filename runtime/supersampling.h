@@ -42,8 +42,7 @@ int CoveredMean(const raster::ImageF& image, const std::vector<uint8_t>& covered
 // The rendering matrix of the box-filtered frame: row 4 p + c is the mean of the rows 4 s + c
 // of p's subpixels that hold a fragment (fragments > 0), columns merged in increasing order;
 // offset and rendered alike (a pixel with none: its first subpixel's row, the clear colour);
-// fragments[p] = the number of covered subpixels. k = 1: a copy.
-raster::RenderingMatrix BoxFilterRows(const raster::RenderingMatrix& a, int width, int height,
-                                      int k);
+// fragments[p] = the number of covered subpixels. k = 1: `a` itself.
+raster::RenderingMatrix BoxFilterRows(raster::RenderingMatrix a, int width, int height, int k);
 
 }  // namespace pem::runtime

@@ -69,7 +69,17 @@ struct Fixture {
     void Set(int view, const std::string& name, const raster::Texture& t) {
         textures[std::to_string(view) + "/" + name] = t;
     }
+    // The same inner and outer layer maps at both samples.
+    void SetLayers(const raster::Texture& inner, const raster::Texture& outer) {
+        for (int v : {0, 1}) Set(v, "layer_0", inner), Set(v, "layer_1", outer);
+    }
 };
+
+// An opaque outer layer of one colour under a transparent inner one, and that colour in [0, 1].
+void SetOpaqueOuterLayer(Fixture* fx) {
+    fx->SetLayers(Constant(8, 0, 0, 0, 0), Constant(8, 128, 64, 255, 255));
+}
+constexpr float kOuterColour[3] = {128 / 255.0f, 64 / 255.0f, 1.0f};
 
 RenderSettings Settings(Method m) {
     RenderSettings s;
@@ -93,10 +103,7 @@ size_t LensPixels(const RenderedFrame& f) {
 
 TEST(Renderer, ConstantMapTimesFresnel) {
     Fixture fx;
-    fx.Set(0, "layer_0", Constant(8, 0, 0, 0, 0));         // inner layer: transparent
-    fx.Set(0, "layer_1", Constant(8, 128, 64, 255, 255));  // outer layer
-    fx.Set(1, "layer_0", Constant(8, 0, 0, 0, 0));
-    fx.Set(1, "layer_1", Constant(8, 128, 64, 255, 255));
+    SetOpaqueOuterLayer(&fx);
     Renderer r(fx.scene, fx.Maps(), 2);
     for (Method m : {Method::Hybrid, Method::Pem}) {
         const RenderedFrame f = r.Render(r.SampleCamera(0), Settings(m));
@@ -105,7 +112,7 @@ TEST(Renderer, ConstantMapTimesFresnel) {
         for (size_t p = 0; p < f.lensMask.size(); ++p) {
             if (!f.lensMask[p]) continue;
             const float* px = &f.image.data[3 * p];
-            const float map[3] = {128 / 255.0f, 64 / 255.0f, 1.0f};
+            const float* map = kOuterColour;
             for (int c = 0; c < 3; ++c)  // F in [0.9, 1], one 8-bit step of rounding
                 ASSERT_TRUE(px[c] >= 0.9f * map[c] - 1.5f / 255 && px[c] <= map[c] + 1.5f / 255)
                     << ToString(m) << " pixel " << p << " channel " << c << ": " << px[c];
@@ -119,10 +126,7 @@ TEST(Renderer, ConstantMapTimesFresnel) {
 // samples hits the lens is the ray tracer's alone.
 TEST(Renderer, BorderPixelsMixLensAndSurroundingsBySamples) {
     Fixture fx;
-    for (int v : {0, 1}) {
-        fx.Set(v, "layer_0", Constant(8, 0, 0, 0, 0));
-        fx.Set(v, "layer_1", Constant(8, 128, 64, 255, 255));
-    }
+    SetOpaqueOuterLayer(&fx);
     Renderer r(fx.scene, fx.Maps(), 2);
     const raster::Camera cam = r.SampleCamera(0);
     RenderSettings s = Settings(Method::Hybrid);
@@ -131,7 +135,7 @@ TEST(Renderer, BorderPixelsMixLensAndSurroundingsBySamples) {
     const std::vector<glm::ivec2> border = SilhouettePixels(f.groupOf, cam.width, cam.height);
     ASSERT_GT(border.size(), 20u);
     const trace::PixelSamples traced = trace::RenderPixels(r.tracer(), cam, 3, border, 1);
-    const float map[3] = {128 / 255.0f, 64 / 255.0f, 1.0f};
+    const float* map = kOuterColour;
     int mixed = 0, outside = 0;
     for (size_t b = 0; b < border.size(); ++b) {
         int lens = 0;
@@ -156,10 +160,7 @@ TEST(Renderer, BorderPixelsMixLensAndSurroundingsBySamples) {
 
 TEST(Renderer, OpaqueInnerLayerHidesTheOuterOne) {
     Fixture fx;
-    for (int v : {0, 1}) {
-        fx.Set(v, "layer_0", Constant(8, 200, 10, 10, 255));
-        fx.Set(v, "layer_1", Constant(8, 10, 10, 200, 255));
-    }
+    fx.SetLayers(Constant(8, 200, 10, 10, 255), Constant(8, 10, 10, 200, 255));
     Renderer both(fx.scene, fx.Maps(), 2);
     const RenderedFrame f = both.Render(both.SampleCamera(0), Settings(Method::Hybrid));
     for (int v : {0, 1}) fx.Set(v, "layer_1", Constant(8, 200, 10, 10, 255));
