@@ -124,7 +124,7 @@ void AddStage(GroupBudget* b, const std::string& stage, double psnr) {
     b->stages.push_back({stage, psnr, before - psnr});
 }
 
-// The four stages at the sample for one group.
+// The stages at the sample for one group.
 GroupBudget SampleBudget(runtime::Renderer& renderer, const pipeline::TraceManifest& trace,
                          const runtime::LensGroupEm& g, const runtime::RenderedFrame& hybrid,
                          const runtime::RenderSettings& s) {
@@ -146,22 +146,24 @@ GroupBudget SampleBudget(runtime::Renderer& renderer, const pipeline::TraceManif
                                            v[c] = im.layers[t][l].data[4 * p + c] / cov;
                                    });
     AddStage(&b, "layered EM", DisplayPsnr(layered, ref, w, h, mask));
-    const auto exact = ExactLookupLayers(renderer.tracer(), cam, trace.spp, g, Targets(im, g),
-                                         im.b[0], 2 * renderer.maps().res, s.threads);
-    AddStage(&b, "best maps, exact lookups",
-             DisplayPsnr(Recomposed(greedy, im, g.Terms(), exact.empty() ? 0 : exact[0].size(),
-                                    [&](int t, size_t l, size_t p, float* v) {
-                                        for (size_t c = 0; c < 4; ++c)
-                                            v[c] = exact[size_t(t)][l].rgba[4 * p + c];
-                                    }),
-                         ref, w, h, mask));
-    const auto maps = renderer.LayerImages(cam, s, g.index, view);
-    const Rgb drawn = Recomposed(greedy, im, g.Terms(), maps.empty() ? 0 : maps[0].size(),
-                                 [&](int t, size_t l, size_t p, float* v) {
-                                     for (size_t c = 0; c < 4; ++c)
-                                         v[c] = maps[size_t(t)][l].rgba[4 * p + c];
-                                 });
-    AddStage(&b, "maps", DisplayPsnr(drawn, ref, w, h, mask));
+    // Layer images (Renderer::LayerImages' layout) composited into the frame, against ref.
+    const auto psnrOf = [&](const std::vector<std::vector<raster::ImageF>>& layers) {
+        return DisplayPsnr(Recomposed(greedy, im, g.Terms(), layers.empty() ? 0 : layers[0].size(),
+                                      [&](int t, size_t l, size_t p, float* v) {
+                                          for (size_t c = 0; c < 4; ++c)
+                                              v[c] = layers[size_t(t)][l].rgba[4 * p + c];
+                                      }),
+                           ref, w, h, mask);
+    };
+    const auto exact = [&](int res, bool unitRange) {
+        return ExactLookupLayers(renderer.tracer(), cam, trace.spp, g, Targets(im, g), im.b[0], res,
+                                 unitRange, s.threads);
+    };
+    const int res = renderer.maps().res;
+    AddStage(&b, "best maps, exact lookups", psnrOf(exact(2 * res, false)));
+    AddStage(&b, "maps in [0, 1]", psnrOf(exact(2 * res, true)));
+    AddStage(&b, "map resolution", psnrOf(exact(res, true)));
+    AddStage(&b, "texgen, filtering, solve", psnrOf(renderer.LayerImages(cam, s, g.index, view)));
     AddStage(&b, "hardware frame", DisplayPsnr(RgbOf(hybrid.image), ref, w, h, mask));
     return b;
 }

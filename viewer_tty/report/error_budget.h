@@ -12,11 +12,14 @@
 //   layered EM          the traced layer images composited with premultiplied over, times the
 //                       traced F·G: what perfect maps on these layers could give
 //   best maps, exact    each layer's map fitted through exact per-subpixel lookups at twice
-//   lookups             the maps' resolution (exact_fit.h): what no map on these shells can
-//                       show (parallax, view and path dependence)
-//   maps                the inferred maps drawn through their texgen passes alone (linear
-//                       profile, exact texel weights), composited and modulated as above: what
-//                       per-vertex lookups, MIP filtering, the resolution and the solve cost
+//   lookups             the maps' resolution, unbounded (exact_fit.h): what no map on these
+//                       shells can show (parallax, view and path dependence)
+//   maps in [0, 1]      the same fit in the 8-bit maps' range: what clamping the incident
+//                       radiance (above 1) costs
+//   map resolution      the same fit in [0, 1] at the maps' own resolution
+//   texgen, filtering,  the inferred maps drawn through their texgen passes alone (linear
+//   solve               profile, exact texel weights), composited and modulated as above: what
+//                       per-vertex lookups, MIP filtering and the regularized solve cost
 //   hardware frame      the hybrid frame as drawn: per-vertex F·G, 8-bit maps and framebuffer,
 //                       the hardware's compositing
 // Off the samples (between two samples, 10° above): the hybrid frame against the ray tracer at

@@ -122,15 +122,16 @@ raster::Frame UnknownCube(int width, int height, int res) {
     return f;
 }
 
-// The least-squares map of one layer (unbounded, nearly unregularized) and what it shows, A x.
+// The least-squares map of one layer (nearly unregularized; unbounded, or in the 8-bit maps'
+// range [0, 1]) and what it shows, A x.
 std::vector<double> FitAndShow(const raster::RenderingMatrix& a, const raster::Frame& frame,
-                               const infer::Target& target, int threads) {
+                               const infer::Target& target, bool unitRange, int threads) {
     infer::RegularizerWeights w;
     w.smooth = w.pyramid = 0.0;
     w.prior = 1e-9;
     const infer::LinearSystem sys = infer::BuildSystem(a, frame, 0, target, w, {2});
     infer::SolveOptions so;
-    so.bounds = infer::Bounds::None();
+    so.bounds = unitRange ? infer::Bounds::Unit() : infer::Bounds::None();
     so.maxIterations = 300;
     so.atol = 1e-7;
     so.logEvery = 0;
@@ -149,7 +150,7 @@ std::vector<double> FitAndShow(const raster::RenderingMatrix& a, const raster::F
 std::vector<std::vector<raster::ImageF>> ExactLookupLayers(
     const trace::Tracer& tracer, const raster::Camera& cam, int k, const runtime::LensGroupEm& g,
     const std::vector<std::vector<trace::FloatImage>>& targets, const trace::FloatImage& coverage,
-    int res, int threads) {
+    int res, bool unitRange, int threads) {
     const Subpixels sp = TraceSubpixels(tracer, cam, k, g.index, coverage, threads);
     const raster::Frame frame = UnknownCube(cam.width, cam.height, res);
     const uint32_t texels = raster::TexelIndexer(frame.textures).TotalTexels();
@@ -169,7 +170,7 @@ std::vector<std::vector<raster::ImageF>> ExactLookupLayers(
                     target.b[row] = double(targets[size_t(t)][l].data[4 * p + c]);
                     target.confidence[row] = double(coverage.data[4 * size_t(p) + 3]);
                 }
-        const std::vector<double> ax = FitAndShow(a, frame, target, threads);
+        const std::vector<double> ax = FitAndShow(a, frame, target, unitRange, threads);
         for (int t = 0; t < g.Terms(); ++t) {
             raster::ImageF img{cam.width, cam.height, std::vector<float>(4 * wh, 0.0f)};
             for (size_t i = 0; i < 4 * wh; ++i) img.rgba[i] = float(ax[4 * size_t(t) * wh + i]);
