@@ -37,6 +37,11 @@ std::string GroupImagePath(const std::string& traceDir, int view, int group,
     return GroupDir(traceDir, view, group) + "/" + name + ".exr";
 }
 
+std::string GroupSampleImagePath(const std::string& traceDir, int view, int group,
+                                 const std::string& name) {
+    return GroupDir(traceDir, view, group) + "/samples/" + name + ".exr";
+}
+
 std::string LayerImageName(int layer, int term) {
     return "layer_" + std::to_string(layer) + "_" + runtime::TermName(term);
 }

@@ -8,6 +8,9 @@
 //     view_vvv/group_g/b_τ.exr, FG_τ.exr,         view_vvv/group_g/<map>.exr (+ .png, .csv)
 //       confidence_τ.exr, layer_l_τ.exr,            maps: layer_l, single, pem_local,
 //       local.exr, distant.exr, fresnel1.exr        pem_distant
+//     view_vvv/group_g/samples/b_τ.exr,
+//       layer_l_τ.exr, local.exr, distant.exr
+//       (the K×K samples of those images, K > 1)
 //   (+ .png previews of reference, greedy, b_τ, local, distant; v: 3 digits; τ ∈ {R, T})
 //   bake directory: trace/ and pem/ side by side.
 //
@@ -36,6 +39,10 @@ std::string GroupDir(const std::string& dir, int view, int group);
 std::string FrameImagePath(const std::string& traceDir, int view, const std::string& name);
 std::string GroupImagePath(const std::string& traceDir, int view, int group,
                            const std::string& name);
+// The K× sample image of a group image (trace/image.h SampleCell): dir/view_v/group_g/samples/
+// <name>.exr.
+std::string GroupSampleImagePath(const std::string& traceDir, int view, int group,
+                                 const std::string& name);
 // The layer image of layer l and term τ: "layer_<l>_<τ>".
 std::string LayerImageName(int layer, int term);
 

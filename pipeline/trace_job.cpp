@@ -72,6 +72,13 @@ struct Job {
     void WriteGroup(size_t v, int g, const std::string& name, const trace::FloatImage& image) {
         Write(GroupImagePath(options.outDir, static_cast<int>(v), g, name), name, image);
     }
+    // A group image's K×K samples (K > 1; with K = 1 they are the image itself).
+    void WriteSamples(size_t v, int g, const std::string& name, const trace::FloatImage& image) {
+        if (options.spp == 1) return;
+        const std::string path = GroupSampleImagePath(options.outDir, static_cast<int>(v), g, name);
+        std::filesystem::create_directories(std::filesystem::path(path).parent_path());
+        trace::WriteExr(path, image);
+    }
 
     // Step 1 of a viewpoint: the reference (full tree) and the greedy two-term frame.
     void Frames(size_t v) {
@@ -106,12 +113,15 @@ struct Job {
         for (int t = 0; t < s.terms; ++t) {
             const std::string tn = runtime::TermName(t);
             WriteGroup(v, g, "b_" + tn, s.b[t]);
+            WriteSamples(v, g, "b_" + tn, s.bSamples[t]);
             WriteGroup(v, g, "FG_" + tn, s.fg[t]);
             WriteGroup(v, g, "confidence_" + tn, s.confidence[t]);
         }
         if (s.mirror) {
             WriteGroup(v, g, "local", s.local);
             WriteGroup(v, g, "distant", s.distant);
+            WriteSamples(v, g, "local", s.localSamples);
+            WriteSamples(v, g, "distant", s.distantSamples);
             WriteGroup(v, g, "fresnel1", s.fresnel1);
         }
         records[gi].insert(records[gi].end(), s.records.begin(), s.records.end());
@@ -139,8 +149,10 @@ struct Job {
             trace::RenderLayers(tracer, Camera(v), options.spp, groupLayers[static_cast<size_t>(g)],
                                 options.threads, progress.For("layers"));
         for (int t = 0; t < 2; ++t)
-            for (size_t l = 0; l < li.term[t].size(); ++l)
+            for (size_t l = 0; l < li.term[t].size(); ++l) {
                 WriteGroup(v, g, LayerImageName(static_cast<int>(l), t), li.term[t][l]);
+                WriteSamples(v, g, LayerImageName(static_cast<int>(l), t), li.samples[t][l]);
+            }
         manifest.views[v].layers += li.counts;
     }
 };

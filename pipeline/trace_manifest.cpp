@@ -169,15 +169,18 @@ TraceManifest ReadTraceManifest(const std::string& dir) {
 
 namespace {
 
-trace::FloatImage ReadChecked(const TraceManifest& m, const std::string& path, int channels) {
+// An image of the trace's size times `k` (k = K for sample images).
+trace::FloatImage ReadChecked(const TraceManifest& m, const std::string& path, int channels,
+                              int k = 1) {
     CheckInside(m.dir, path);
     trace::FloatImage img = trace::ReadExr(path);
-    if (img.width != m.width || img.height != m.height || img.channels != channels)
+    const int w = k * m.width, h = k * m.height;
+    if (img.width != w || img.height != h || img.channels != channels)
         throw base::InputError(path, std::to_string(img.width) + "x" + std::to_string(img.height) +
-                                         " with " + std::to_string(img.channels) +
-                                         " channels; the trace is " + std::to_string(m.width) +
-                                         "x" + std::to_string(m.height) + " (" +
-                                         std::to_string(channels) + " channels expected)");
+                                         " with " + std::to_string(img.channels) + " channels; " +
+                                         std::to_string(w) + "x" + std::to_string(h) + " with " +
+                                         std::to_string(channels) +
+                                         " channels expected for this trace");
     return img;
 }
 
@@ -190,6 +193,12 @@ trace::FloatImage ReadFrameImage(const TraceManifest& m, int view, const std::st
 trace::FloatImage ReadGroupImage(const TraceManifest& m, int view, int group,
                                  const std::string& name, int channels) {
     return ReadChecked(m, GroupImagePath(m.dir, view, group, name), channels);
+}
+
+trace::FloatImage ReadGroupSamples(const TraceManifest& m, int view, int group,
+                                   const std::string& name) {
+    if (m.spp == 1) return ReadGroupImage(m, view, group, name);
+    return ReadChecked(m, GroupSampleImagePath(m.dir, view, group, name), 4, m.spp);
 }
 
 std::string ResolveScene(const std::string& dir, const std::string& stored,

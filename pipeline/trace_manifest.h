@@ -59,6 +59,10 @@ void WriteTraceManifest(const TraceManifest& manifest);  // dir/trace.json
 trace::FloatImage ReadFrameImage(const TraceManifest& m, int view, const std::string& name);
 trace::FloatImage ReadGroupImage(const TraceManifest& m, int view, int group,
                                  const std::string& name, int channels = 4);
+// The K×K samples of a group image (RGBA, K W × K H; layout.h GroupSampleImagePath): what
+// inference fits. K = 1: the image itself.
+trace::FloatImage ReadGroupSamples(const TraceManifest& m, int view, int group,
+                                   const std::string& name);
 TraceManifest ReadTraceManifest(const std::string& dir);
 
 // The scene file of a trace or PEM directory: `stored` relative to `dir` (or absolute); when it

@@ -33,6 +33,26 @@ void FloatImage::Scale(float s) {
     for (float& v : data) v *= s;
 }
 
+glm::ivec2 SampleCell(int x, int y, int k, int s) {
+    return {k * x + s % k, k * y + s / k};
+}
+
+FloatImage BoxFilter(const FloatImage& samples, int k) {
+    FloatImage out(samples.width / k, samples.height / k, samples.channels);
+    const size_t ch = static_cast<size_t>(samples.channels);
+    for (int y = 0; y < out.height; ++y)
+        for (int x = 0; x < out.width; ++x) {
+            float* p = out.At(x, y);
+            for (int s = 0; s < k * k; ++s) {
+                const glm::ivec2 cell = SampleCell(x, y, k, s);
+                const float* q = samples.At(cell.x, cell.y);
+                for (size_t c = 0; c < ch; ++c) p[c] += q[c];
+            }
+        }
+    out.Scale(1.0f / static_cast<float>(k * k));
+    return out;
+}
+
 namespace {
 
 const char* ChannelName(int channels, int c) {

@@ -2,8 +2,9 @@
 // image.h — float images of the tracer (HDR, linear) and their OpenEXR output.
 //
 // Conventions: rows top-down (row 0 is the top, as raster/camera.h), pixels interleaved with
-// `channels` floats each (1 = Y, 3 = RGB, 4 = RGBA with PREMULTIPLIED alpha). Box filtering of
-// supersamples is the caller's business (it accumulates sums and calls Scale).
+// `channels` floats each (1 = Y, 3 = RGB, 4 = RGBA with PREMULTIPLIED alpha). Supersamples: the
+// caller accumulates sums and calls Scale, or keeps one sample per cell of a K× image (tracer.h
+// SampleCell) and box-filters it with BoxFilter.
 // Files: 32-bit float channels, ZIP compression, no time stamps, so equal images give equal bytes;
 // written to `<path>.tmp.<pid>` and renamed, so a failed write leaves no file behind.
 // Reading: ReadExr takes R,G,B(,A) or Y float/half channels (missing A = 1 is not assumed: an
@@ -36,6 +37,15 @@ struct FloatImage {
     void Add(int x, int y, const glm::vec3& rgb, float alpha = 0.0f);
     void Scale(float s);
 };
+
+// Where sample s (tracer.h SampleOffset: row-major in the pixel) of pixel (x, y) is kept in a K×
+// sample image: the cell (k x + s mod k, k y + s / k).
+glm::ivec2 SampleCell(int x, int y, int k, int s);
+
+// The W×H image of a K× sample image (K W × K H, sample s of pixel (x, y) in the cell
+// SampleCell(x, y, k, s)): per pixel the sum of its samples in sample order, times 1/K² — the
+// bits that adding them to a pixel with Add and then Scale(1/K²) give.
+FloatImage BoxFilter(const FloatImage& samples, int k);
 
 // Writes channels R,G,B(,A) (or Y for one channel) as 32-bit float OpenEXR. Throws
 // pem::base::InputError("<path>: <cause>") when the file cannot be written.

@@ -217,7 +217,7 @@ struct LayerPainter {
     LayerImages& out;
 
     // The layer colours seen along one exit ray.
-    void Exit(const TermSample& term, int t, int x, int y, RayCounts& counts) const {
+    void Exit(const TermSample& term, int t, glm::ivec2 cell, RayCounts& counts) const {
         const size_t n = layers.clustering.layers.size();
         std::vector<char> filled(n, 0);
         const int budget = tracer.options().fullTreeDepth - term.events;
@@ -227,12 +227,12 @@ struct LayerPainter {
                 LayerOf(layers, h.object, glm::length(glm::dvec3(p) - glm::dvec3(layers.emOrigin)));
             if (filled[static_cast<size_t>(l)]) continue;
             filled[static_cast<size_t>(l)] = 1;
-            out.term[t][static_cast<size_t>(l)].Add(
-                x, y, tracer.HitRadiance(term.exit, h, budget, 1.0, counts), 1.0f);
+            out.samples[t][static_cast<size_t>(l)].Add(
+                cell.x, cell.y, tracer.HitRadiance(term.exit, h, budget, 1.0, counts), 1.0f);
         }
         if (!filled[n - 1])
-            out.term[t][n - 1].Add(x, y, EnvRadiance(tracer.scene().environment, term.exit.dir),
-                                   1.0f);
+            out.samples[t][n - 1].Add(cell.x, cell.y,
+                                      EnvRadiance(tracer.scene().environment, term.exit.dir), 1.0f);
     }
 
     void Pixel(int x, int y, RayCounts& counts) const {
@@ -242,8 +242,9 @@ struct LayerPainter {
             const Hit hit = IncomingHit(tracer, ray, layers.group, counts);
             if (!hit.valid) continue;
             const GreedySample g = tracer.TraceGreedy(ray, hit, layers.group, counts);
-            if (g.reflection.escaped) Exit(g.reflection, 0, x, y, counts);
-            if (terms > 1 && g.refraction.escaped) Exit(g.refraction, 1, x, y, counts);
+            const glm::ivec2 cell = SampleCell(x, y, k, s);
+            if (g.reflection.escaped) Exit(g.reflection, 0, cell, counts);
+            if (terms > 1 && g.refraction.escaped) Exit(g.refraction, 1, cell, counts);
         }
     }
 };
@@ -258,7 +259,7 @@ LayerImages RenderLayers(const Tracer& tracer, const raster::Camera& camera, int
     if (n == 0) return out;
     const int terms = tracer.GroupHasGlass(layers.group) ? 2 : 1;
     for (int t = 0; t < terms; ++t)
-        out.term[t].assign(n, FloatImage(camera.width, camera.height, 4));
+        out.samples[t].assign(n, FloatImage(k * camera.width, k * camera.height, 4));
     std::vector<RayCounts> rowCounts(static_cast<size_t>(camera.height));
     const LayerPainter painter{tracer, camera, k, terms, layers, out};
     base::ParallelFor(
@@ -268,9 +269,8 @@ LayerImages RenderLayers(const Tracer& tracer, const raster::Camera& camera, int
                 painter.Pixel(x, y, rowCounts[static_cast<size_t>(y)]);
         },
         progress);
-    const float inv = 1.0f / static_cast<float>(k * k);
     for (int t = 0; t < terms; ++t)
-        for (FloatImage& img : out.term[t]) img.Scale(inv);
+        for (const FloatImage& img : out.samples[t]) out.term[t].push_back(BoxFilter(img, k));
     for (const RayCounts& c : rowCounts) out.counts += c;
     return out;
 }

@@ -86,7 +86,8 @@ double ShellParallax(const Shell& shell, std::span<const RayHit> hits, const glm
 int LayerOf(const GroupLayers& layers, int object, double distance);
 
 struct LayerImages {
-    std::vector<FloatImage> term[2];  // [τ][layer], RGBA
+    std::vector<FloatImage> term[2];     // [τ][layer], RGBA
+    std::vector<FloatImage> samples[2];  // the same as K× sample images (image.h SampleCell)
     RayCounts counts;
 };
 

@@ -74,14 +74,16 @@ struct Segmenter {
         }
     }
 
-    // PEM split along the first reflected ray (mirror-only groups).
-    void MirrorSplit(const Ray& ray, const Hit& hit, int x, int y, RowRecords& row) const {
+    // PEM split along the first reflected ray (mirror-only groups) of the sample in `cell`.
+    void MirrorSplit(const Ray& ray, const Hit& hit, int x, int y, glm::ivec2 cell,
+                     RowRecords& row) const {
         const FirstBounce fb = BounceOf(tracer, ray, hit);
         const int budget = tracer.options().fullTreeDepth - 1;
         const Hit h1 = tracer.Intersect(fb.ray, row.counts);
         const bool local = h1.valid && tracer.GroupOf(h1.object) == group;
         if (local)
-            out.local.Add(x, y, tracer.HitRadiance(fb.ray, h1, budget, 1.0, row.counts), 1.0f);
+            out.localSamples.Add(cell.x, cell.y,
+                                 tracer.HitRadiance(fb.ray, h1, budget, 1.0, row.counts), 1.0f);
         Hit d = h1;
         if (local) {
             d = Hit{};
@@ -91,7 +93,8 @@ struct Segmenter {
                     break;
                 }
         }
-        out.distant.Add(x, y, tracer.HitRadiance(fb.ray, d, budget, 1.0, row.counts), 1.0f);
+        out.distantSamples.Add(cell.x, cell.y,
+                               tracer.HitRadiance(fb.ray, d, budget, 1.0, row.counts), 1.0f);
         out.fresnel1.Add(x, y, fb.fresnel, 1.0f);
         if (d.valid) {
             row.distantSum +=
@@ -106,6 +109,7 @@ struct Segmenter {
         for (int t = 0; t < out.terms; ++t) dirs[t].assign(samples, glm::vec3(0.0f));
         for (int s = 0; s < k * k; ++s) {
             const glm::vec2 pos = SamplePosition(x, y, k, s);
+            const glm::ivec2 cell = SampleCell(x, y, k, s);
             const Ray ray = raster::PixelRay(camera, pos.x, pos.y);
             const Hit hit = IncomingHit(tracer, ray, group, row.counts);
             if (!hit.valid) continue;
@@ -114,13 +118,13 @@ struct Segmenter {
             for (int t = 0; t < out.terms; ++t) {
                 const TermSample& term = *terms[t];
                 out.fg[t].Add(x, y, term.F * term.G, 1.0f);
-                out.b[t].Add(x, y, term.b, 1.0f);
+                out.bSamples[t].Add(cell.x, cell.y, term.b, 1.0f);
                 if (!term.escaped) continue;
                 dirs[t][static_cast<size_t>(s)] = term.exit.dir;
                 const uint64_t pixel = static_cast<uint64_t>(y) * camera.width + x;
                 if (s == 0) Record(term.exit, 2 * pixel + static_cast<uint64_t>(t), row);
             }
-            if (out.mirror) MirrorSplit(ray, hit, x, y, row);
+            if (out.mirror) MirrorSplit(ray, hit, x, y, cell, row);
         }
         for (int t = 0; t < out.terms; ++t)
             out.confidence[t].At(x, y)[0] = static_cast<float>(PixelConfidence(dirs[t]));
@@ -160,13 +164,13 @@ GroupSegmentation SegmentGroup(const Tracer& tracer, const raster::Camera& camer
     out.mirror = !tracer.GroupHasGlass(group);
     const int w = camera.width, h = camera.height;
     for (int t = 0; t < out.terms; ++t) {
-        out.b[t] = FloatImage(w, h, 4);
+        out.bSamples[t] = FloatImage(k * w, k * h, 4);
         out.fg[t] = FloatImage(w, h, 4);
         out.confidence[t] = FloatImage(w, h, 1);
     }
     if (out.mirror) {
-        out.local = FloatImage(w, h, 4);
-        out.distant = FloatImage(w, h, 4);
+        out.localSamples = FloatImage(k * w, k * h, 4);
+        out.distantSamples = FloatImage(k * w, k * h, 4);
         out.fresnel1 = FloatImage(w, h, 4);
     }
     std::vector<RowRecords> rows(static_cast<size_t>(h));
@@ -179,9 +183,12 @@ GroupSegmentation SegmentGroup(const Tracer& tracer, const raster::Camera& camer
         progress);
     // Box filter, then merge the rows' records in row order.
     const float inv = 1.0f / static_cast<float>(k * k);
-    for (FloatImage* img :
-         {&out.b[0], &out.b[1], &out.fg[0], &out.fg[1], &out.local, &out.distant, &out.fresnel1})
-        img->Scale(inv);
+    for (FloatImage* img : {&out.fg[0], &out.fg[1], &out.fresnel1}) img->Scale(inv);
+    for (int t = 0; t < out.terms; ++t) out.b[t] = BoxFilter(out.bSamples[t], k);
+    if (out.mirror) {
+        out.local = BoxFilter(out.localSamples, k);
+        out.distant = BoxFilter(out.distantSamples, k);
+    }
     for (RowRecords& r : rows) {
         out.records.insert(out.records.end(), r.records.begin(), r.records.end());
         out.recordPoints.insert(out.recordPoints.end(), r.points.begin(), r.points.end());

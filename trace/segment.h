@@ -11,7 +11,9 @@
 //  - b[τ]:  the exit ray's radiance of term τ (0 = R, 1 = T; a cut path contributes 0),
 //  - fg[τ]: the modulation F·G per channel,
 //  - confidence[τ] (one channel): confidence.h over the pixel's exit directions, θc = 5°.
-//  T images only for groups with glass. Mirror-only groups also get the PEM split along the
+//  T images only for groups with glass. b, local and distant are also kept sample by sample
+//  (K× images, image.h SampleCell; A = 1 where the sample's ray hits the group): inference fits
+//  its maps to the samples. Mirror-only groups also get the PEM split along the
 //  FIRST reflected ray: `local` (A = fraction whose first reflected ray hits the group again,
 //  rgb its full-tree radiance), `distant` (the first reflected ray continued through the group
 //  to the first other surface or the environment; A = coverage) and `fresnel1` (the first
@@ -39,6 +41,8 @@ struct GroupSegmentation {
     FloatImage confidence[2];             // Y
     bool mirror = false;                  // the PEM split below is filled
     FloatImage local, distant, fresnel1;  // RGBA
+    // The K× sample images of b[τ], local and distant (BoxFilter gives the images above).
+    FloatImage bSamples[2], localSamples, distantSamples;
     std::vector<HitRecord> records;
     std::vector<glm::vec3> recordPoints;   // world position of each record's hit
     std::vector<glm::vec3> recordOrigins;  // the exit ray's origin of each record

@@ -3,7 +3,8 @@
 // full tree for a pure mirror, RenderFrame (packets, deferred shading) = the single-ray path
 // sample by sample, bit for bit, the surroundings of a hybrid frame = the full tree off the
 // lenses, the reference of the hybrid scene is finite, lit and shows the
-// glass teapot, image channels in range (layer alpha, coverage, confidence), circle viewpoints.
+// glass teapot, image channels in range (layer alpha, coverage, confidence), the segmentation's
+// and the layers' sample images = the single-ray greedy path sample by sample, circle viewpoints.
 #include "trace/tracer.h"
 
 #include <gtest/gtest.h>
@@ -258,6 +259,58 @@ TEST(Tracer, SegmentedImagesAndLayerAlphaInRange) {
                     for (int x = 0; x < img.width; ++x) alphaSum += img.At(x, y)[3];
             }
         EXPECT_GT(alphaSum, 1.0f);
+    }
+}
+
+// The K× sample images that inference fits: each cell is its own camera sample's greedy path
+// (IncomingHit + TraceGreedy, one ray, bit for bit), and box-filtered they are the pixel images.
+TEST(Tracer, SampleImagesAreTheSamplesOneByOne) {
+    const TracedScene traced(kHybrid);
+    const auto& [scene, device, embree, tracer] = traced;
+    const int k = 2;
+    const raster::Camera cam = CameraForSize(*scene.camera, 48, 36);
+    for (int g = 0; g < static_cast<int>(scene.lensGroups.size()); ++g) {
+        const GroupSegmentation s = SegmentGroup(tracer, cam, k, g, 0, GroupEmOrigin(scene, g), 2);
+        int covered = 0;
+        for (int y = 0; y < cam.height; ++y)
+            for (int x = 0; x < cam.width; ++x)
+                for (int i = 0; i < k * k; ++i) {
+                    const glm::vec2 pos = SamplePosition(x, y, k, i);
+                    const Ray ray = raster::PixelRay(cam, pos.x, pos.y);
+                    RayCounts counts;
+                    const Hit hit = IncomingHit(tracer, ray, g, counts);
+                    const glm::ivec2 cell = SampleCell(x, y, k, i);
+                    covered += hit.valid;
+                    const GreedySample gs =
+                        hit.valid ? tracer.TraceGreedy(ray, hit, g, counts) : GreedySample{};
+                    const TermSample* terms[2] = {&gs.reflection, &gs.refraction};
+                    for (int t = 0; t < s.terms; ++t) {
+                        const float* v = s.bSamples[t].At(cell.x, cell.y);
+                        const glm::vec3 b = hit.valid ? terms[t]->b : glm::vec3(0.0f);
+                        ASSERT_EQ(v[0], b.x) << g << " " << x << " " << y << " " << i;
+                        ASSERT_EQ(v[1], b.y);
+                        ASSERT_EQ(v[2], b.z);
+                        ASSERT_EQ(v[3], hit.valid ? 1.0f : 0.0f);
+                    }
+                }
+        EXPECT_GT(covered, 20) << g;  // not vacuous
+        for (int t = 0; t < s.terms; ++t) EXPECT_EQ(BoxFilter(s.bSamples[t], k), s.b[t]);
+        if (s.mirror) {
+            EXPECT_EQ(BoxFilter(s.localSamples, k), s.local);
+            EXPECT_EQ(BoxFilter(s.distantSamples, k), s.distant);
+        }
+        LayerInput in{s.records,      s.recordPoints, 2, 0.15, s.distantDistanceSum,
+                      s.distantCount, s.recordOrigins};
+        const LayerImages li =
+            RenderLayers(tracer, cam, k, BuildLayers(scene, g, s.mirror, in), 2);
+        for (int t = 0; t < s.terms; ++t)
+            for (size_t l = 0; l < li.term[t].size(); ++l) {
+                ASSERT_EQ(li.samples[t][l].width, k * cam.width);
+                EXPECT_EQ(BoxFilter(li.samples[t][l], k), li.term[t][l]);
+                const FloatImage& img = li.samples[t][l];  // one sample: alpha 0 or 1
+                for (size_t p = 0; p < img.data.size() / 4; ++p)
+                    ASSERT_TRUE(img.data[4 * p + 3] == 0.0f || img.data[4 * p + 3] == 1.0f);
+            }
     }
 }
 
