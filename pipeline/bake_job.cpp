@@ -94,7 +94,6 @@ size_t WriteOutputs(const BakeJobOptions& o, const TraceManifest& trace, int n) 
 BakeJobOptions DefaultBakeOptions() {
     BakeJobOptions o;
     o.trace.views = "circle:3:10";
-    o.infer.neighbours = 1;
     o.infer.single = true;  // the report compares the single-layer PEM
     return o;
 }

@@ -107,13 +107,17 @@ void ExportSystem(const std::string& exportDir, const MapReport& rep,
 // The stacked system of one map ------------------------------------------------------------
 
 // One observation of a map: a texgen pass and the traced image it must reproduce.
+// The images are the trace's K×K samples (K W × K H, trace/image.h SampleCell): the maps are
+// fitted sample by sample, as the renderers draw them (K×K subpixels, runtime/supersampling.h).
+// A sample row has one exit ray, so the hybrid paper's confidence (trace/confidence.h: the
+// spread of a pixel's exit rays) is 1 for every row: the trace's confidence images, which
+// weigh pixel-sized rows, are not read.
 struct MapInput {
     const trace::FloatImage* layer = nullptr;     // RGBA premultiplied layer image
     const trace::FloatImage* coverage = nullptr;  // alpha = lens coverage
-    const trace::FloatImage* confidence = nullptr;
     raster::Pass pass;
     std::optional<raster::Pass> depthPass;  // drawn before `pass`: depth only (DepthOnlyPass)
-    double weight = 1.0;                    // multiplies the confidence
+    double weight = 1.0;                    // the rows' weight (times the coverage)
     bool own = true;                        // the sample's own view (counts in rmse_8bit)
 };
 
@@ -147,35 +151,67 @@ raster::Frame UnknownFrame(int width, int height, int res, const raster::Sampler
     return frame;
 }
 
-// Target rows 4 * (y W + x) + c: the layer un-premultiplied by coverage (clamped into [0, 1]
-// for 8-bit maps: what they can reach), weight conf · coverage.
-void AppendTarget(const MapInput& in, int width, int height, bool hdr, infer::Target* t) {
-    const size_t n = static_cast<size_t>(width) * static_cast<size_t>(height);
-    const size_t first = t->b.size();
-    t->b.resize(first + n * 4, 0.0);
-    t->confidence.resize(first + n * 4, 0.0);
-    for (int y = 0; y < height; ++y)
-        for (int x = 0; x < width; ++x) {
-            const size_t p =
-                static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x);
-            const double cov = static_cast<double>(in.coverage->At(x, y)[3]);
-            if (!(cov > 1e-6)) continue;
-            const double conf =
-                in.confidence ? static_cast<double>(in.confidence->At(x, y)[0]) : 1.0;
-            for (size_t c = 0; c < 4; ++c) {
-                const double v = static_cast<double>(in.layer->At(x, y)[c]) / cov;
-                t->b[first + 4 * p + c] = hdr ? v : std::clamp(v, 0.0, 1.0);
-                t->confidence[first + 4 * p + c] = in.weight * conf * cov;
-            }
-        }
+// The subpixels of the K× frame (row-major, top-down) that the group covers in the trace.
+std::vector<uint32_t> CoveredCells(const MapInput& in) {
+    std::vector<uint32_t> cells;
+    const trace::FloatImage& cov = *in.coverage;
+    for (int y = 0; y < cov.height; ++y)
+        for (int x = 0; x < cov.width; ++x)
+            if (cov.At(x, y)[3] > 1e-6f) cells.push_back(static_cast<uint32_t>(y * cov.width + x));
+    return cells;
 }
 
-// Every observation's rows stacked, the first one's frame describing the unknown texture.
+// The rendering matrix's rows of the listed subpixels (4 per subpixel, in the list's order).
+raster::RenderingMatrix KeepRows(const raster::RenderingMatrix& a,
+                                 const std::vector<uint32_t>& cells) {
+    raster::RenderingMatrix out;
+    out.rows = 4 * static_cast<int64_t>(cells.size());
+    out.cols = a.cols;
+    out.rowPtr.push_back(0);
+    for (uint32_t cell : cells)
+        for (size_t r = 4 * size_t{cell}; r < 4 * size_t{cell} + 4; ++r) {
+            const auto first = static_cast<size_t>(a.rowPtr[r]);
+            const auto last = static_cast<size_t>(a.rowPtr[r + 1]);
+            out.col.insert(out.col.end(), a.col.begin() + first, a.col.begin() + last);
+            out.val.insert(out.val.end(), a.val.begin() + first, a.val.begin() + last);
+            out.rowPtr.push_back(static_cast<int64_t>(out.col.size()));
+            out.offset.push_back(a.offset[r]);
+            out.rendered.push_back(a.rendered[r]);
+        }
+    for (uint32_t cell : cells) out.fragments.push_back(a.fragments[cell]);
+    return out;
+}
+
+// Target rows of the listed subpixels, 4 each: the layer un-premultiplied by coverage (clamped
+// into [0, 1] for 8-bit maps: what they can reach), weight · coverage.
+void AppendTarget(const MapInput& in, const std::vector<uint32_t>& cells, bool hdr,
+                  infer::Target* t) {
+    const int width = in.coverage->width;
+    for (uint32_t cell : cells) {
+        const int x = static_cast<int>(cell) % width, y = static_cast<int>(cell) / width;
+        const double cov = static_cast<double>(in.coverage->At(x, y)[3]);
+        for (size_t c = 0; c < 4; ++c) {
+            const double v = static_cast<double>(in.layer->At(x, y)[c]) / cov;
+            t->b.push_back(hdr ? v : std::clamp(v, 0.0, 1.0));
+            t->confidence.push_back(in.weight * cov);
+        }
+    }
+}
+
+// One of the sample's own observations: its K× frame, its first stacked row, its subpixels.
+struct OwnRows {
+    raster::Frame frame;
+    int64_t first = 0;
+    std::vector<uint32_t> cells;
+};
+
+// Every observation's rows of the covered subpixels stacked, the first one's frame describing
+// the unknown texture.
 struct StackedRows {
     raster::RenderingMatrix a;
     infer::Target target;
-    raster::Frame frame;                                 // the first observation's
-    std::vector<std::pair<raster::Frame, int64_t>> own;  // the sample's own frames, first row
+    raster::Frame frame;  // the first observation's
+    std::vector<OwnRows> own;
 };
 
 StackedRows StackRows(const std::vector<MapInput>& inputs, int w, int h, int k,
@@ -187,44 +223,44 @@ StackedRows StackRows(const std::vector<MapInput>& inputs, int w, int h, int k,
     ro.threads = opt.threads;
     for (size_t i = 0; i < inputs.size(); ++i) {
         raster::Frame f = UnknownFrame(k * w, k * h, opt.res, opt.hardware.Sampler(), inputs[i]);
-        raster::RenderingMatrix a = runtime::BoxFilterRows(
-            raster::BuildRenderingMatrix(raster::PreparedFrame(f), ro), w, h, k);
+        std::vector<uint32_t> cells = CoveredCells(inputs[i]);
+        raster::RenderingMatrix a =
+            KeepRows(raster::BuildRenderingMatrix(raster::PreparedFrame(f), ro), cells);
+        AppendTarget(inputs[i], cells, opt.hdr, &s.target);
         if (i == 0) {
             s.a = std::move(a);
             s.frame = f;
         } else {
             AppendRows(&s.a, a);
         }
-        if (inputs[i].own) s.own.emplace_back(f, i == 0 ? 0 : s.a.rows - a.rows);
-        AppendTarget(inputs[i], w, h, opt.hdr, &s.target);
+        if (inputs[i].own)
+            s.own.push_back({std::move(f), i == 0 ? 0 : s.a.rows - 4 * int64_t(cells.size()),
+                             std::move(cells)});
     }
     return s;
 }
 
 // Solving one map ----------------------------------------------------------------------------
 
-// The 8-bit copy of a map through the llvmpipe profile on the sample's own rows of the mask:
-// the error the hardware shows.
+// The 8-bit copy of a map through the target profile on the sample's own rows of the mask,
+// subpixel by subpixel: the error the hardware shows.
 double Rmse8(const infer::CubeMapF& m, const StackedRows& s, const infer::LinearSystem& sys,
-             int width, int height, int k, const std::string& profile, int threads) {
-    const int64_t frameRows = int64_t{4} * width * height;
+             const std::string& profile, int threads) {
     const raster::Texture tex8 = infer::ToTexture8(m, s.frame.textures[0].sampler);
     raster::RenderOptions fo = raster::ProfileNamed(profile).options;
     fo.threads = threads;
     double sum = 0.0, weight = 0.0;
-    for (const auto& [ownFrame, first] : s.own) {
-        raster::Frame f8 = ownFrame;
+    for (const OwnRows& own : s.own) {
+        raster::Frame f8 = own.frame;
         f8.textures[0] = tex8;
         const raster::RenderResult rr = raster::Render(raster::PreparedFrame(f8), fo);
-        const std::vector<uint8_t> covered =
-            runtime::CoveredSubpixels(rr.depth, runtime::kLensDepth);
-        double rgba[4];
+        const int64_t last = own.first + 4 * static_cast<int64_t>(own.cells.size());
         for (int64_t r : sys.imageRowOf) {
-            if (r < first || r >= first + frameRows) continue;  // this observation's rows
+            if (r < own.first || r >= last) continue;  // this observation's rows
+            const size_t cell = own.cells[static_cast<size_t>((r - own.first) / 4)];
+            const double v = rr.image8.rgba[4 * cell + static_cast<size_t>((r - own.first) % 4)];
+            const double d = v / 255.0 - s.target.b[static_cast<size_t>(r)];
             weight += s.target.confidence[static_cast<size_t>(r)];
-            runtime::CoveredMean(rr.image8, covered, width, k,
-                                 static_cast<uint32_t>((r - first) / 4), rgba);
-            const double d = rgba[(r - first) % 4] - s.target.b[static_cast<size_t>(r)];
             sum += s.target.confidence[static_cast<size_t>(r)] * d * d;
         }
     }
@@ -271,7 +307,7 @@ MapReport SolveMap(const std::vector<MapInput>& inputs, const InferJobOptions& o
     rep.fillSeconds = Since(tFill);
     // Step 4: rmse_8bit (and the direct optimum's, when asked and small enough).
     const auto tRender = Clock::now();
-    rep.rmse8 = Rmse8(map, s, sys, tm.width, tm.height, tm.spp, opt.hardware.profile, opt.threads);
+    rep.rmse8 = Rmse8(map, s, sys, opt.hardware.profile, opt.threads);
     rep.renderSeconds = Since(tRender);
     if (opt.direct && sys.Cols() <= opt.directMaxCols) {
         const infer::SolveResult d =
@@ -279,7 +315,7 @@ MapReport SolveMap(const std::vector<MapInput>& inputs, const InferJobOptions& o
         rep.directSeconds = d.seconds;
         rep.directRmse8 =
             Rmse8(infer::CubeMapFromSolution(infer::FillUnobserved(sys, d.x), sys.layout), s, sys,
-                  tm.width, tm.height, tm.spp, opt.hardware.profile, opt.threads);
+                  opt.hardware.profile, opt.threads);
     }
     // Step 5: files.
     const auto tWrite = Clock::now();
@@ -300,7 +336,7 @@ struct ViewGeometry {
     std::vector<uint32_t> order;
     glm::mat4 vp{1.0f};
     double weight = 1.0;
-    trace::FloatImage cov[2], conf[2];  // per term: b_τ (alpha = coverage), confidence_τ
+    trace::FloatImage cov[2];  // per term: b_τ's samples (alpha = coverage)
     std::vector<runtime::ExitRay> exits[2];
 };
 
@@ -339,8 +375,7 @@ ViewGeometry SampleGeometry(const Context& c, int u, const runtime::LensGroupEm&
     sample->vertexRays += vg.lp.counts.Total();
     for (int term = 0; term < terms; ++term) {
         const std::string tn = runtime::TermName(term);
-        vg.cov[term] = ReadGroupImage(c.tm, u, group, "b_" + tn);
-        vg.conf[term] = ReadGroupImage(c.tm, u, group, "confidence_" + tn, 1);
+        vg.cov[term] = ReadGroupSamples(c.tm, u, group, "b_" + tn);
         vg.exits[term] = runtime::TermExits(vg.lp.tess.paths, term);
     }
     return vg;
@@ -377,7 +412,6 @@ std::vector<MapInput> Observations(const std::vector<ViewGeometry>& geo, int ter
             const ViewGeometry& vg = geo[k];
             MapInput in{images[static_cast<size_t>(term)][k],
                         &vg.cov[term],
-                        &vg.conf[term],
                         {},
                         {},
                         vg.weight,
@@ -421,7 +455,7 @@ void SolveLayerMaps(Context& c, int v, const runtime::LensGroupEm& g,
         std::vector<std::vector<const trace::FloatImage*>> images(2);
         for (int t = 0; t < g.Terms(); ++t)
             for (const ViewGeometry& vg : geo)
-                images[static_cast<size_t>(t)].push_back(&owned.emplace_back(ReadGroupImage(
+                images[static_cast<size_t>(t)].push_back(&owned.emplace_back(ReadGroupSamples(
                     c.tm, vg.view, g.index, LayerImageName(static_cast<int>(l), t))));
         Solve(c, Observations(geo, g.Terms(), v, images, g.layers[l].shell, g.emOrigin), odir,
               Report(v, g, static_cast<int>(l), term, LayerMapName(static_cast<int>(l))));
@@ -439,9 +473,8 @@ void SolveLayerMaps(Context& c, int v, const runtime::LensGroupEm& g,
 void SolvePemMaps(Context& c, int v, const runtime::LensGroupEm& g, const std::string& odir) {
     const runtime::MirrorGeometry m =
         runtime::MakeMirrorGeometry(c.scene, g.index, c.cameras[static_cast<size_t>(v)]);
-    const trace::FloatImage distant = ReadGroupImage(c.tm, v, g.index, "distant");
-    const trace::FloatImage local = ReadGroupImage(c.tm, v, g.index, "local");
-    const trace::FloatImage conf = ReadGroupImage(c.tm, v, g.index, "confidence_R", 1);
+    const trace::FloatImage distant = ReadGroupSamples(c.tm, v, g.index, "distant");
+    const trace::FloatImage local = ReadGroupSamples(c.tm, v, g.index, "local");
     const std::vector<uint8_t> hull = runtime::HullTriangles(m.mesh);
     const bool convex = runtime::AllOnHull(hull);
     if (convex) {
@@ -456,7 +489,7 @@ void SolvePemMaps(Context& c, int v, const runtime::LensGroupEm& g, const std::s
     const std::vector<uint32_t> offHull = runtime::OffHull(m.order, hull);
     for (int which = convex ? 1 : 0; which < 2; ++which) {
         const trace::Shell& shell = which == 0 ? g.localShell : g.distantShell;
-        MapInput in{which == 0 ? &local : &distant, &distant, &conf, {}, {}, 1.0, true};
+        MapInput in{which == 0 ? &local : &distant, &distant, {}, {}, 1.0, true};
         runtime::PassOptions po = DepthTested();
         if (which == 0) {
             in.depthPass = runtime::DepthOnlyPass(m.Pass(), m.order, m.viewProjection);

@@ -11,13 +11,15 @@
 // sample (runtime/lens_paths.h), and per layer l one map `layer_l` for both terms (hybrid §4.3:
 // [A_R; A_T] x = [b_R; b_T]): per term τ the texgen pass (runtime/texgen.h) that looks the
 // layer's cube map up at each vertex's exit-ray hit on the layer's shell; raster/'s rendering
-// matrix of that pass (linear profile: llvmpipe's texel selection and weights); the target =
-// the traced layer image layer_l_τ un-premultiplied by the lens coverage (b_τ's alpha),
-// weighted by confidence_τ × coverage; the terms' rows stacked; infer::BuildSystem with the
+// matrix of that pass (linear profile: llvmpipe's texel selection and weights) drawn with the
+// trace's K×K subpixels per pixel, one row per covered subpixel; the target = that camera
+// sample of the traced layer image layer_l_τ (trace/image.h sample images) un-premultiplied by
+// its lens coverage (b_τ's alpha), weighted by the coverage (a sample has one exit ray: the
+// hybrid paper's confidence is 1); the terms' rows stacked; infer::BuildSystem with the
 // active texels (observed + rings), LSMR with bounds ([0, 1] or HDR), FillUnobserved, files.
 // `single`: one more map, `single`, from the whole exit radiance b_τ on one sphere.
 // With `neighbours` = k, the layer maps' systems also hold the rows of the k samples on each side
-// (their own vertex paths, texgen and traced layer images, confidence × neighbourWeight): the
+// (their own vertex paths, texgen and traced layer images, weight × neighbourWeight): the
 // simultaneous solve of hybrid §4.3, so a map also fits what is seen just off its sample.
 // Mirror-only groups also get the PEM paper's split (runtime/mirror_geometry.h): `local` on the
 // ellipsoid shell and `distant` on the box; each fitted as the renderer draws it (`local` only
@@ -57,7 +59,7 @@ struct InferJobOptions {
     std::vector<int> views;         // empty: all
     bool single = false;            // also the single-layer map (`single`, both terms)
     int neighbours = 0;             // samples on each side in the simultaneous solve (hybrid §4.3)
-    double neighbourWeight = 0.5;   // their rows' confidence factor
+    double neighbourWeight = 0.5;   // their rows' weight factor
     bool direct = false;            // also solve with the direct oracle (when it fits)
     int64_t directMaxCols = 400000;  // unknowns (4 per texel) the direct solver may take
     infer::RegularizerWeights weights;

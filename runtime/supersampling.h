@@ -3,12 +3,11 @@
 // traced images' K×K sampling, the hybrid paper's subpixels): the hardware draws the frame k
 // times wider and higher, and a pixel is the mean of its subpixels that hold a fragment of the
 // group (its colour un-premultiplied by that coverage; the silhouettes are composited with the
-// ray tracer's coverage afterwards, silhouettes.h). Inference fits the same mean: the rows of
-// the rendering matrix are merged alike, so the maps are looked up as they are fitted.
+// ray tracer's coverage afterwards, silhouettes.h). Inference fits the subpixels one by one to
+// the trace's samples (pipeline/infer_job.h), so the maps are looked up as they are fitted.
 //
 //   frame.width = k * width, frame.height = k * height;        // draw
 //   double rgba[4]; int n = CoveredMean(image8, covered, width, k, pixel, rgba);
-//   raster::RenderingMatrix a = BoxFilterRows(BuildRenderingMatrix(...), width, height, k);
 //
 // Subpixel s = j k + i of pixel (x, y) is pixel (k x + i, k y + j) of the k× frame: the ray
 // tracer's sample s (trace/tracer.h SampleOffset), at the same position.
@@ -38,11 +37,5 @@ int CoveredMean(const raster::Image8& image, const std::vector<uint8_t>& covered
                 uint32_t pixel, double rgba[4]);
 int CoveredMean(const raster::ImageF& image, const std::vector<uint8_t>& covered, int width, int k,
                 uint32_t pixel, double rgba[4]);
-
-// The rendering matrix of the box-filtered frame: row 4 p + c is the mean of the rows 4 s + c
-// of p's subpixels that hold a fragment (fragments > 0), columns merged in increasing order;
-// offset and rendered alike (a pixel with none: its first subpixel's row, the clear colour);
-// fragments[p] = the number of covered subpixels. k = 1: `a` itself.
-raster::RenderingMatrix BoxFilterRows(raster::RenderingMatrix a, int width, int height, int k);
 
 }  // namespace pem::runtime
