@@ -182,16 +182,18 @@ raster::RenderingMatrix KeepRows(const raster::RenderingMatrix& a,
     return out;
 }
 
-// Target rows of the listed subpixels, 4 each: the layer un-premultiplied by coverage (clamped
-// into [0, 1] for 8-bit maps: what they can reach), weight · coverage.
-void AppendTarget(const MapInput& in, const std::vector<uint32_t>& cells, bool hdr,
+// Target rows of the listed subpixels, 4 each: the layer un-premultiplied by coverage, RGB in
+// the maps' units (radiance / scale), clamped into [0, 1] for 8-bit maps (what they can reach);
+// weight · coverage.
+void AppendTarget(const MapInput& in, const std::vector<uint32_t>& cells, double scale, bool hdr,
                   infer::Target* t) {
     const int width = in.coverage->width;
     for (uint32_t cell : cells) {
         const int x = static_cast<int>(cell) % width, y = static_cast<int>(cell) / width;
         const double cov = static_cast<double>(in.coverage->At(x, y)[3]);
         for (size_t c = 0; c < 4; ++c) {
-            const double v = static_cast<double>(in.layer->At(x, y)[c]) / cov;
+            const double v =
+                static_cast<double>(in.layer->At(x, y)[c]) / cov / (c < 3 ? scale : 1.0);
             t->b.push_back(hdr ? v : std::clamp(v, 0.0, 1.0));
             t->confidence.push_back(in.weight * cov);
         }
@@ -226,7 +228,7 @@ StackedRows StackRows(const std::vector<MapInput>& inputs, int w, int h, int k,
         std::vector<uint32_t> cells = CoveredCells(inputs[i]);
         raster::RenderingMatrix a =
             KeepRows(raster::BuildRenderingMatrix(raster::PreparedFrame(f), ro), cells);
-        AppendTarget(inputs[i], cells, opt.hdr, &s.target);
+        AppendTarget(inputs[i], cells, opt.hardware.radianceScale, opt.hdr, &s.target);
         if (i == 0) {
             s.a = std::move(a);
             s.frame = f;

@@ -28,6 +28,7 @@ struct MapReport {
     double buildSeconds = 0.0, solveSeconds = 0.0;
     int iterations = 0;
     std::string stop;
+    // In the maps' units (RGB: radiance / the radiance scale; alpha), over the sample's rows.
     double rmse = 0.0, rmse8 = 0.0, objective = 0.0;
     double texelMin = 0.0, texelMax = 0.0;
     double directRmse8 = -1.0, directSeconds = 0.0;  // < 0: not run

@@ -29,6 +29,7 @@ json ManifestJson(const PemManifest& m) {
             {"res", m.res},
             {"profile", m.hardware.profile},
             {"max_anisotropy", m.hardware.maxAnisotropy},
+            {"radiance_scale", m.hardware.radianceScale},
             {"full_tree_depth", m.fullTreeDepth},
             {"min_weight", m.minWeight},
             {"fresnel", m.fresnel},
@@ -67,6 +68,9 @@ PemManifest ManifestFromJson(const json& j) {
     m.hardware.maxAnisotropy = j.value("max_anisotropy", 1.0f);  // absent in older directories: off
     if (!(m.hardware.maxAnisotropy >= 1.0f && m.hardware.maxAnisotropy <= 16.0f))
         throw std::runtime_error("max_anisotropy must lie in [1, 16]");
+    m.hardware.radianceScale = j.value("radiance_scale", 1.0f);  // absent in older directories
+    if (!runtime::IsRadianceScale(m.hardware.radianceScale))
+        throw std::runtime_error("radiance_scale must be a power of two in [1, 64]");
     m.fullTreeDepth = j.at("full_tree_depth").get<int>();
     m.minWeight = j.at("min_weight").get<double>();
     m.fresnel = j.at("fresnel").get<std::string>();

@@ -23,11 +23,15 @@
 
 namespace pem::runtime {
 
-// The hardware that draws the maps: a profile (raster/profile.h) and the maps' sampler state,
-// the same for inference and rendering.
+// The hardware that draws the maps: a profile (raster/profile.h), the maps' sampler state and
+// their radiance scale, the same for inference and rendering.
 struct MapHardware {
     std::string profile = "llvmpipe";
     float maxAnisotropy = 1.0f;  // GL_TEXTURE_MAX_ANISOTROPY of the lens maps (1: off)
+    // The maps and the lens frames hold radiance / radianceScale (a power of two, so the
+    // scaling is exact): 8-bit maps reach incident radiance up to the scale, at steps of
+    // scale / 255; the renderers multiply the lens frames by it (a frame saturates at the scale).
+    float radianceScale = 1.0f;
 
     // Trilinear, seamless, with the anisotropy.
     raster::SamplerState Sampler() const {
@@ -36,6 +40,13 @@ struct MapHardware {
         return s;
     }
 };
+
+// A radiance scale MapHardware accepts: a power of two in [1, 64].
+inline bool IsRadianceScale(float s) {
+    for (float p = 1.0f; p <= 64.0f; p *= 2.0f)
+        if (s == p) return true;
+    return false;
+}
 
 struct MapSet {
     std::string name;                     // for messages: the PEM directory

@@ -291,6 +291,11 @@ struct Renderer::Impl {
     raster::RenderOptions Hardware(const RenderSettings& s) const {
         return raster::ProfileNamed(s.profile.empty() ? maps.hardware.profile : s.profile).options;
     }
+    // What the lens frames' values are multiplied by (map_set.h: the maps hold radiance / it;
+    // the static EM's traced maps hold radiance), and so where a lens pixel saturates.
+    double RadianceScale(const RenderSettings& s) const {
+        return s.method == Method::StaticEm ? 1.0 : static_cast<double>(maps.hardware.radianceScale);
+    }
     std::vector<LayerUse> Uses(const GroupDraw& d, bool pemSplit) const;
     void DrawStatic(const GroupDraw& d, const GroupGeometry& gg);
     void DrawMaps(const GroupDraw& d, const GroupGeometry& gg, bool pemSplit);
@@ -384,8 +389,8 @@ void Renderer::Impl::DrawMaps(const GroupDraw& d, const GroupGeometry& gg, bool 
                 throw base::InputError(maps.name, "missing maps for viewpoint sample " +
                                                       std::to_string(d.samples[k]) + ", group " +
                                                       std::to_string(d.group));
-            const int f = batch.Add(textures, coords[term], gg.exits[term], d.weights[k], geometry,
-                                    firstFrameOf[term]);
+            const int f = batch.Add(textures, coords[term], gg.exits[term],
+                                    d.weights[k] * RadianceScale(d.s), geometry, firstFrameOf[term]);
             if (firstFrameOf[term] < 0) firstFrameOf[term] = f;
         }
     }
@@ -540,7 +545,11 @@ std::vector<std::vector<raster::ImageF>> Renderer::LayerImages(const raster::Cam
             FillLayerPass(geo, ShellCoords(gg.exits[term], *uses[k].shell, g.emOrigin, s.threads),
                           gg.exits[term], po, &frame.passes[0], s.threads);
             const raster::RenderResult rr = raster::Render(raster::PreparedFrame(frame), ro);
-            out[static_cast<size_t>(term)].push_back(BoxFiltered(rr, camera, sub));
+            raster::ImageF img = BoxFiltered(rr, camera, sub);
+            const auto scale = static_cast<float>(m.RadianceScale(s));
+            for (size_t i = 0; i < img.rgba.size(); ++i)
+                if (i % 4 != 3) img.rgba[i] *= scale;
+            out[static_cast<size_t>(term)].push_back(std::move(img));
         }
     return out;
 }
@@ -588,11 +597,12 @@ RenderedFrame Renderer::Render(const raster::Camera& camera, const RenderSetting
         m.DrawGroup({camera, s, g, out.stats.samples, out.stats.sampleWeights, pixels, &acc, sub,
                      &border, border.empty() ? nullptr : &borderSamples[static_cast<size_t>(g)],
                      &out.stats});
+        const double saturation = m.RadianceScale(s);  // the terms added in one framebuffer
         for (size_t k = 0; k < pixels.size(); ++k) {
             out.lensMask[pixels[k]] = 1;
             for (size_t c = 0; c < 3; ++c)
                 out.image.data[3 * size_t{pixels[k]} + c] =
-                    static_cast<float>(std::min(1.0, acc[3 * k + c]));
+                    static_cast<float>(std::min(saturation, acc[3 * k + c]));
         }
     }
     // Step 4: the groups' borders from k×k samples of the ray tracer (silhouettes.h).

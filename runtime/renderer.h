@@ -90,7 +90,8 @@ class Renderer {
 
     // For the error budget: one lens group's maps of one sample through their texgen passes,
     // each layer alone (linear profile: exact texel weights, float framebuffer; no F·G, no
-    // blending): [term][layer] RGBA premultiplied, layers as drawn (innermost first).
+    // blending): [term][layer] RGBA premultiplied, RGB in radiance (times the radiance scale),
+    // layers as drawn (innermost first).
     std::vector<std::vector<raster::ImageF>> LayerImages(const raster::Camera& camera,
                                                          const RenderSettings& settings, int group,
                                                          int sample);

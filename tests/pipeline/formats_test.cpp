@@ -245,6 +245,35 @@ TEST(PemManifest, HardwareRoundTripsAndImpossibleAnisotropyIsRefused) {
     fs::remove_all(dir);
 }
 
+TEST(PemManifest, RadianceScaleRoundTripsAndOnlyPowersOfTwoAreTaken) {
+    const fs::path dir = FreshDir("pem_manifest_scale");
+    const TraceManifest t = SmallTrace(dir, 1);
+    PemManifest m = PemManifestFor(t, (dir / "pem").string(), 32, false, {},
+                                   runtime::MapHardware{"llvmpipe", 1.0f, 4.0f});
+    fs::create_directories(m.dir);
+    WritePemManifest(m);
+    EXPECT_EQ(ReadPemManifest(m.dir).hardware.radianceScale, 4.0f);
+    const std::string path = (fs::path(m.dir) / kManifestJson).string();
+    const std::string text = ReadFile(path);
+    const std::string key = "\"radiance_scale\": 4.0";
+    const size_t at = text.find(key);
+    ASSERT_NE(at, std::string::npos);
+    for (const char* bad : {"3.0", "0.5", "0", "128.0", "-2", "\"x\""}) {
+        std::string t2 = text;
+        t2.replace(at, key.size(), std::string("\"radiance_scale\": ") + bad);
+        WriteFile(path, t2);
+        EXPECT_EQ(ErrorOf([&] { ReadPemManifest(m.dir); }).rfind(path + ": ", 0), 0u) << bad;
+    }
+    // Absent (directories written before the key existed): the maps hold radiance itself.
+    std::string old = text;
+    old.replace(at, key.size() + 1, "");
+    WriteFile(path, old);
+    EXPECT_EQ(ReadPemManifest(m.dir).hardware.radianceScale, 1.0f);
+    for (float s : {1.0f, 2.0f, 64.0f}) EXPECT_TRUE(runtime::IsRadianceScale(s)) << s;
+    for (float s : {0.0f, 3.0f, 0.5f, 128.0f, -2.0f}) EXPECT_FALSE(runtime::IsRadianceScale(s)) << s;
+    fs::remove_all(dir);
+}
+
 TEST(InferReport, SampleAndInferJsonRoundTrip) {
     const fs::path dir = FreshDir("infer_report");
     MapReport map;

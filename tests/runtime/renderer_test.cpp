@@ -120,6 +120,31 @@ TEST(Renderer, ConstantMapTimesFresnel) {
     }
 }
 
+// Maps that hold radiance / S (MapHardware::radianceScale) are drawn S times brighter: the
+// constant map times F times S, saturating at S (the blue channel's 1.0 at S = 2 shows 2 F).
+TEST(Renderer, RadianceScaleMultipliesTheLensFrames) {
+    Fixture fx;
+    SetOpaqueOuterLayer(&fx);
+    MapSet scaled = fx.Maps();
+    scaled.hardware.radianceScale = 2.0f;
+    Renderer one(fx.scene, fx.Maps(), 2), two(fx.scene, std::move(scaled), 2);
+    for (Method m : {Method::Hybrid, Method::Pem}) {
+        const RenderedFrame f1 = one.Render(one.SampleCamera(0), Settings(m));
+        const RenderedFrame f2 = two.Render(two.SampleCamera(0), Settings(m));
+        ASSERT_EQ(f1.lensMask, f2.lensMask);
+        size_t above = 0;
+        for (size_t p = 0; p < f1.lensMask.size(); ++p) {
+            if (!f1.lensMask[p]) continue;
+            for (size_t c = 0; c < 3; ++c) {
+                const float v1 = f1.image.data[3 * p + c], v2 = f2.image.data[3 * p + c];
+                ASSERT_EQ(v2, 2.0f * v1) << ToString(m) << " pixel " << p << " channel " << c;
+                above += v2 > 1.0f;
+            }
+        }
+        EXPECT_GT(above, 100u) << ToString(m);  // the blue channel: 2 F > 1
+    }
+}
+
 // With 3×3 subpixels, a pixel on the lens's border mixes the ray tracer's samples that miss it
 // (trace::RenderPixels, tested on its own) with the lens colour at the samples that hit it: the
 // constant map times F in [0.9, 1], weighted by those samples' share; a pixel none of whose

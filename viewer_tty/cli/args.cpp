@@ -59,6 +59,15 @@ void AddMapHardwareOptions(CLI::App* sub, runtime::MapHardware* hardware) {
     sub->add_option("--anisotropy", hardware->maxAnisotropy,
                     "the lens maps' GL_TEXTURE_MAX_ANISOTROPY (1: off, 2..16)")
         ->check(CLI::Range(1.0, 16.0));
+    sub->add_option("--radiance-scale", hardware->radianceScale,
+                    "the maps hold radiance / S (S: 1, 2, 4 .. 64)")
+        ->check([](const std::string& v) -> std::string {
+            try {
+                if (runtime::IsRadianceScale(std::stof(v))) return "";
+            } catch (const std::exception&) {
+            }
+            return "a power of two in [1, 64]";
+        });
 }
 
 std::function<void(const std::string&, double)> ProgressTo(tty::ProgressLine* line) {

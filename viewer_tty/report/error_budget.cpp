@@ -155,14 +155,15 @@ GroupBudget SampleBudget(runtime::Renderer& renderer, const pipeline::TraceManif
                                       }),
                            ref, w, h, mask);
     };
-    const auto exact = [&](int res, bool unitRange) {
+    const auto exact = [&](int res, double maxRadiance) {
         return ExactLookupLayers(renderer.tracer(), cam, trace.spp, g, Targets(im, g), im.b[0], res,
-                                 unitRange, s.threads);
+                                 maxRadiance, s.threads);
     };
     const int res = renderer.maps().res;
-    AddStage(&b, "best maps, exact lookups", psnrOf(exact(2 * res, false)));
-    AddStage(&b, "maps in [0, 1]", psnrOf(exact(2 * res, true)));
-    AddStage(&b, "map resolution", psnrOf(exact(res, true)));
+    const double range = renderer.maps().hardware.radianceScale;
+    AddStage(&b, "best maps, exact lookups", psnrOf(exact(2 * res, 0.0)));
+    AddStage(&b, "maps' range", psnrOf(exact(2 * res, range)));
+    AddStage(&b, "map resolution", psnrOf(exact(res, range)));
     AddStage(&b, "texgen, filtering, solve", psnrOf(renderer.LayerImages(cam, s, g.index, view)));
     AddStage(&b, "hardware frame", DisplayPsnr(RgbOf(hybrid.image), ref, w, h, mask));
     return b;

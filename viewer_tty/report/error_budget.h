@@ -14,9 +14,9 @@
 //   best maps, exact    each layer's map fitted through exact per-subpixel lookups at twice
 //   lookups             the maps' resolution, unbounded (exact_fit.h): what no map on these
 //                       shells can show (parallax, view and path dependence)
-//   maps in [0, 1]      the same fit in the 8-bit maps' range: what clamping the incident
-//                       radiance (above 1) costs
-//   map resolution      the same fit in [0, 1] at the maps' own resolution
+//   maps' range         the same fit in the 8-bit maps' range, [0, radiance scale]
+//                       (runtime/map_set.h): what clamping the incident radiance costs
+//   map resolution      the same fit in that range at the maps' own resolution
 //   texgen, filtering,  the inferred maps drawn through their texgen passes alone (linear
 //   solve               profile, exact texel weights), composited and modulated as above: what
 //                       per-vertex lookups, MIP filtering and the regularized solve cost

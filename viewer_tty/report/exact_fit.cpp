@@ -150,7 +150,10 @@ std::vector<double> FitAndShow(const raster::RenderingMatrix& a, const raster::F
 std::vector<std::vector<raster::ImageF>> ExactLookupLayers(
     const trace::Tracer& tracer, const raster::Camera& cam, int k, const runtime::LensGroupEm& g,
     const std::vector<std::vector<trace::FloatImage>>& targets, const trace::FloatImage& coverage,
-    int res, bool unitRange, int threads) {
+    int res, double maxRadiance, int threads) {
+    // Bounded: fitted in the maps' units (RGB / maxRadiance) within [0, 1], shown in radiance.
+    const bool bounded = maxRadiance > 0.0;
+    const double scale = bounded ? maxRadiance : 1.0;
     const Subpixels sp = TraceSubpixels(tracer, cam, k, g.index, coverage, threads);
     const raster::Frame frame = UnknownCube(cam.width, cam.height, res);
     const uint32_t texels = raster::TexelIndexer(frame.textures).TotalTexels();
@@ -167,13 +170,15 @@ std::vector<std::vector<raster::ImageF>> ExactLookupLayers(
             for (uint32_t p : sp.pixels)
                 for (size_t c = 0; c < 4; ++c) {
                     const size_t row = 4 * (size_t(t) * wh + p) + c;
-                    target.b[row] = double(targets[size_t(t)][l].data[4 * p + c]);
+                    target.b[row] =
+                        double(targets[size_t(t)][l].data[4 * p + c]) / (c < 3 ? scale : 1.0);
                     target.confidence[row] = double(coverage.data[4 * size_t(p) + 3]);
                 }
-        const std::vector<double> ax = FitAndShow(a, frame, target, unitRange, threads);
+        const std::vector<double> ax = FitAndShow(a, frame, target, bounded, threads);
         for (int t = 0; t < g.Terms(); ++t) {
             raster::ImageF img{cam.width, cam.height, std::vector<float>(4 * wh, 0.0f)};
-            for (size_t i = 0; i < 4 * wh; ++i) img.rgba[i] = float(ax[4 * size_t(t) * wh + i]);
+            for (size_t i = 0; i < 4 * wh; ++i)
+                img.rgba[i] = float(ax[4 * size_t(t) * wh + i] * (i % 4 < 3 ? scale : 1.0));
             out[size_t(t)].push_back(std::move(img));
         }
     }
