@@ -155,15 +155,16 @@ GroupBudget SampleBudget(runtime::Renderer& renderer, const pipeline::TraceManif
                                       }),
                            ref, w, h, mask);
     };
-    const auto exact = [&](int res, double maxRadiance) {
+    const auto exact = [&](int res, ExactRange range) {
         return ExactLookupLayers(renderer.tracer(), cam, trace.spp, g, Targets(im, g), im.b[0], res,
-                                 maxRadiance, s.threads);
+                                 range, s.threads);
     };
     const int res = renderer.maps().res;
-    const double range = renderer.maps().hardware.radianceScale;
-    AddStage(&b, "best maps, exact lookups", psnrOf(exact(2 * res, 0.0)));
-    AddStage(&b, "maps' range", psnrOf(exact(2 * res, range)));
-    AddStage(&b, "map resolution", psnrOf(exact(res, range)));
+    const ExactRange maps{true, renderer.maps().hardware.radianceScale};
+    AddStage(&b, "best maps, exact lookups", psnrOf(exact(2 * res, {})));
+    AddStage(&b, "nonnegative maps", psnrOf(exact(2 * res, {true, 0.0})));
+    AddStage(&b, "maps' range", psnrOf(exact(2 * res, maps)));
+    AddStage(&b, "map resolution", psnrOf(exact(res, maps)));
     AddStage(&b, "texgen, filtering, solve", psnrOf(renderer.LayerImages(cam, s, g.index, view)));
     AddStage(&b, "hardware frame", DisplayPsnr(RgbOf(hybrid.image), ref, w, h, mask));
     return b;

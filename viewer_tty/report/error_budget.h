@@ -14,6 +14,8 @@
 //   best maps, exact    each layer's map fitted through exact per-subpixel lookups at twice
 //   lookups             the maps' resolution, unbounded (exact_fit.h): what no map on these
 //                       shells can show (parallax, view and path dependence)
+//   nonnegative maps    the same fit with texels ≥ 0: what the negative texels of the unbounded
+//                       fit bought (sharpening; no radiance is negative)
 //   maps' range         the same fit in the 8-bit maps' range, [0, radiance scale]
 //                       (runtime/map_set.h): what clamping the incident radiance costs
 //   map resolution      the same fit in that range at the maps' own resolution

@@ -122,16 +122,16 @@ raster::Frame UnknownCube(int width, int height, int res) {
     return f;
 }
 
-// The least-squares map of one layer (nearly unregularized; unbounded, or in the 8-bit maps'
-// range [0, 1]) and what it shows, A x.
+// The least-squares map of one layer (nearly unregularized, within `bounds`) and what it
+// shows, A x.
 std::vector<double> FitAndShow(const raster::RenderingMatrix& a, const raster::Frame& frame,
-                               const infer::Target& target, bool unitRange, int threads) {
+                               const infer::Target& target, infer::Bounds bounds, int threads) {
     infer::RegularizerWeights w;
     w.smooth = w.pyramid = 0.0;
     w.prior = 1e-9;
     const infer::LinearSystem sys = infer::BuildSystem(a, frame, 0, target, w, {2});
     infer::SolveOptions so;
-    so.bounds = unitRange ? infer::Bounds::Unit() : infer::Bounds::None();
+    so.bounds = bounds;
     so.maxIterations = 300;
     so.atol = 1e-7;
     so.logEvery = 0;
@@ -150,10 +150,14 @@ std::vector<double> FitAndShow(const raster::RenderingMatrix& a, const raster::F
 std::vector<std::vector<raster::ImageF>> ExactLookupLayers(
     const trace::Tracer& tracer, const raster::Camera& cam, int k, const runtime::LensGroupEm& g,
     const std::vector<std::vector<trace::FloatImage>>& targets, const trace::FloatImage& coverage,
-    int res, double maxRadiance, int threads) {
-    // Bounded: fitted in the maps' units (RGB / maxRadiance) within [0, 1], shown in radiance.
-    const bool bounded = maxRadiance > 0.0;
-    const double scale = bounded ? maxRadiance : 1.0;
+    int res, ExactRange range, int threads) {
+    // The maps' range: fitted in the maps' units (RGB / maxRadiance) within [0, 1], shown in
+    // radiance.
+    const bool ranged = range.nonnegative && range.maxRadiance > 0.0;
+    const double scale = ranged ? range.maxRadiance : 1.0;
+    const infer::Bounds bounds = ranged              ? infer::Bounds::Unit()
+                                 : range.nonnegative ? infer::Bounds::Hdr()
+                                                     : infer::Bounds::None();
     const Subpixels sp = TraceSubpixels(tracer, cam, k, g.index, coverage, threads);
     const raster::Frame frame = UnknownCube(cam.width, cam.height, res);
     const uint32_t texels = raster::TexelIndexer(frame.textures).TotalTexels();
@@ -174,7 +178,7 @@ std::vector<std::vector<raster::ImageF>> ExactLookupLayers(
                         double(targets[size_t(t)][l].data[4 * p + c]) / (c < 3 ? scale : 1.0);
                     target.confidence[row] = double(coverage.data[4 * size_t(p) + 3]);
                 }
-        const std::vector<double> ax = FitAndShow(a, frame, target, bounded, threads);
+        const std::vector<double> ax = FitAndShow(a, frame, target, bounds, threads);
         for (int t = 0; t < g.Terms(); ++t) {
             raster::ImageF img{cam.width, cam.height, std::vector<float>(4 * wh, 0.0f)};
             for (size_t i = 0; i < 4 * wh; ++i)

@@ -2,13 +2,14 @@
 // exact_fit.h — the error budget's "best maps on these shells" stage: each layer's map fitted to
 // the traced layer images through EXACT lookups — every subpixel's own exit ray met with the
 // layer's shell, the finest level sampled bilinearly, no per-vertex interpolation, no MIP
-// filtering — unregularized, unbounded or RGB in the 8-bit maps' range [0, radiance scale].
-// Unbounded at twice the maps' resolution, what stays is what no map on these shells can show
-// (parallax, view and path dependence); in the maps' range, what clamping the incident radiance
-// costs; at the maps' own resolution, what the resolution costs; what the hardware adds on top
-// of it is the cost of its texgen and filtering.
+// filtering — unregularized; unbounded, nonnegative, or RGB in the 8-bit maps' range
+// [0, radiance scale]. Unbounded at twice the maps' resolution, what stays is what no map on
+// these shells can show (parallax, view and path dependence); nonnegative, what the negative
+// texels of that fit bought (a least-squares fit sharpens with them); in the maps' range, what
+// clamping the incident radiance costs; at the maps' own resolution, what the resolution costs;
+// what the hardware adds on top of it is the cost of its texgen and filtering.
 //
-//   auto layers = ExactLookupLayers(tracer, camera, k, group, targets, coverage, 256, 0.0, 2);
+//   auto layers = ExactLookupLayers(tracer, camera, k, group, targets, coverage, 256, {}, 2);
 //
 // Conventions: targets[τ][l] is layer_l_τ with the lens coverage divided out (RGBA, the maps'
 // premultiplied values); the result has Renderer::LayerImages' layout ([term][layer] RGBA per
@@ -27,10 +28,15 @@
 
 namespace pem::report {
 
+// The texel values the fit may take.
+struct ExactRange {
+    bool nonnegative = false;  // false: unbounded
+    double maxRadiance = 0.0;  // > 0 (with nonnegative): RGB ≤ it, alpha ≤ 1
+};
+
 std::vector<std::vector<raster::ImageF>> ExactLookupLayers(
     const trace::Tracer& tracer, const raster::Camera& camera, int k,
     const runtime::LensGroupEm& group, const std::vector<std::vector<trace::FloatImage>>& targets,
-    const trace::FloatImage& coverage, int res, double maxRadiance, int threads);
-// maxRadiance > 0: RGB in [0, maxRadiance], alpha in [0, 1]; 0: unbounded.
+    const trace::FloatImage& coverage, int res, ExactRange range, int threads);
 
 }  // namespace pem::report
