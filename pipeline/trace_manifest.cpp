@@ -198,7 +198,10 @@ trace::FloatImage ReadGroupImage(const TraceManifest& m, int view, int group,
 trace::FloatImage ReadGroupSamples(const TraceManifest& m, int view, int group,
                                    const std::string& name) {
     if (m.spp == 1) return ReadGroupImage(m, view, group, name);
-    return ReadChecked(m, GroupSampleImagePath(m.dir, view, group, name), 4, m.spp);
+    const std::string path = GroupSampleImagePath(m.dir, view, group, name);
+    if (!std::filesystem::exists(path))
+        throw base::InputError(path, "missing: the trace keeps no sample images (trace again)");
+    return ReadChecked(m, path, 4, m.spp);
 }
 
 std::string ResolveScene(const std::string& dir, const std::string& stored,
