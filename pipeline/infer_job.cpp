@@ -25,7 +25,6 @@
 #include "runtime/convex_hull.h"
 #include "runtime/lens_paths.h"
 #include "runtime/mirror_geometry.h"
-#include "runtime/supersampling.h"
 #include "runtime/texgen.h"
 #include "trace/embree_scene.h"
 #include "trace/image.h"
