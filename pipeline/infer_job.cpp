@@ -227,7 +227,8 @@ StackedRows StackRows(const std::vector<MapInput>& inputs, int w, int h, int k,
         std::vector<uint32_t> cells = CoveredCells(inputs[i]);
         raster::RenderingMatrix a =
             KeepRows(raster::BuildRenderingMatrix(raster::PreparedFrame(f), ro), cells);
-        AppendTarget(inputs[i], cells, opt.hardware.radianceScale, opt.hdr, &s.target);
+        AppendTarget(inputs[i], cells, static_cast<double>(opt.hardware.radianceScale), opt.hdr,
+                     &s.target);
         if (i == 0) {
             s.a = std::move(a);
             s.frame = f;

@@ -160,7 +160,7 @@ GroupBudget SampleBudget(runtime::Renderer& renderer, const pipeline::TraceManif
                                  range, s.threads);
     };
     const int res = renderer.maps().res;
-    const ExactRange maps{true, renderer.maps().hardware.radianceScale};
+    const ExactRange maps{true, static_cast<double>(renderer.maps().hardware.radianceScale)};
     AddStage(&b, "best maps, exact lookups", psnrOf(exact(2 * res, {})));
     AddStage(&b, "nonnegative maps", psnrOf(exact(2 * res, {true, 0.0})));
     AddStage(&b, "maps' range", psnrOf(exact(2 * res, maps)));
