@@ -59,13 +59,13 @@ struct InferJobOptions {
     int threads = 1;
     // The target hardware: profile, the maps' sampler and radiance scale.
     runtime::MapHardware hardware{.radianceScale = kDefaultRadianceScale};
-    bool hdr = false;               // float radiance, bounds [0, inf)
-    double tessT = 5.0;             // tessellation t in subpixels (1 / spp pixels)
-    std::vector<int> views;         // empty: all
-    bool single = false;            // also the single-layer map (`single`, both terms)
-    int neighbours = 0;             // samples on each side in the simultaneous solve (hybrid §4.3)
-    double neighbourWeight = 0.5;   // their rows' weight factor
-    bool direct = false;            // also solve with the direct oracle (when it fits)
+    bool hdr = false;              // float radiance, bounds [0, inf)
+    double tessT = 5.0;            // tessellation t in subpixels (1 / spp pixels)
+    std::vector<int> views;        // empty: all
+    bool single = false;           // also the single-layer map (`single`, both terms)
+    int neighbours = 0;            // samples on each side in the simultaneous solve (hybrid §4.3)
+    double neighbourWeight = 0.5;  // their rows' weight factor
+    bool direct = false;           // also solve with the direct oracle (when it fits)
     int64_t directMaxCols = 400000;  // unknowns (4 per texel) the direct solver may take
     infer::RegularizerWeights weights;
     infer::SystemOptions system{2};

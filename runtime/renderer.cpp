@@ -294,7 +294,8 @@ struct Renderer::Impl {
     // What the lens frames' values are multiplied by (map_set.h: the maps hold radiance / it;
     // the static EM's traced maps hold radiance), and so where a lens pixel saturates.
     double RadianceScale(const RenderSettings& s) const {
-        return s.method == Method::StaticEm ? 1.0 : static_cast<double>(maps.hardware.radianceScale);
+        return s.method == Method::StaticEm ? 1.0
+                                            : static_cast<double>(maps.hardware.radianceScale);
     }
     std::vector<LayerUse> Uses(const GroupDraw& d, bool pemSplit) const;
     void DrawStatic(const GroupDraw& d, const GroupGeometry& gg);
@@ -389,8 +390,9 @@ void Renderer::Impl::DrawMaps(const GroupDraw& d, const GroupGeometry& gg, bool 
                 throw base::InputError(maps.name, "missing maps for viewpoint sample " +
                                                       std::to_string(d.samples[k]) + ", group " +
                                                       std::to_string(d.group));
-            const int f = batch.Add(textures, coords[term], gg.exits[term],
-                                    d.weights[k] * RadianceScale(d.s), geometry, firstFrameOf[term]);
+            const int f =
+                batch.Add(textures, coords[term], gg.exits[term], d.weights[k] * RadianceScale(d.s),
+                          geometry, firstFrameOf[term]);
             if (firstFrameOf[term] < 0) firstFrameOf[term] = f;
         }
     }

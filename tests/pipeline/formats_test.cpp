@@ -270,7 +270,8 @@ TEST(PemManifest, RadianceScaleRoundTripsAndOnlyPowersOfTwoAreTaken) {
     WriteFile(path, old);
     EXPECT_EQ(ReadPemManifest(m.dir).hardware.radianceScale, 1.0f);
     for (float s : {1.0f, 2.0f, 64.0f}) EXPECT_TRUE(runtime::IsRadianceScale(s)) << s;
-    for (float s : {0.0f, 3.0f, 0.5f, 128.0f, -2.0f}) EXPECT_FALSE(runtime::IsRadianceScale(s)) << s;
+    for (float s : {0.0f, 3.0f, 0.5f, 128.0f, -2.0f})
+        EXPECT_FALSE(runtime::IsRadianceScale(s)) << s;
     fs::remove_all(dir);
 }
 

@@ -301,8 +301,7 @@ TEST(Tracer, SampleImagesAreTheSamplesOneByOne) {
         }
         LayerInput in{s.records,      s.recordPoints, 2, 0.15, s.distantDistanceSum,
                       s.distantCount, s.recordOrigins};
-        const LayerImages li =
-            RenderLayers(tracer, cam, k, BuildLayers(scene, g, s.mirror, in), 2);
+        const LayerImages li = RenderLayers(tracer, cam, k, BuildLayers(scene, g, s.mirror, in), 2);
         for (int t = 0; t < s.terms; ++t)
             for (size_t l = 0; l < li.term[t].size(); ++l) {
                 ASSERT_EQ(li.samples[t][l].width, k * cam.width);
