@@ -13,6 +13,19 @@
 
 namespace pem::raster {
 
+// 64-bit integer add, subtract and multiply that wrap modulo 2^64, as the reference's compiled
+// int64 edge arithmetic does (vertices that snap to INT32_MIN, from NaN or overflow, take edge
+// values near 2^63).
+inline int64_t WrapAdd64(int64_t a, int64_t b) {
+    return static_cast<int64_t>(static_cast<uint64_t>(a) + static_cast<uint64_t>(b));
+}
+inline int64_t WrapSub64(int64_t a, int64_t b) {
+    return static_cast<int64_t>(static_cast<uint64_t>(a) - static_cast<uint64_t>(b));
+}
+inline int64_t WrapMul64(int64_t a, int64_t b) {
+    return static_cast<int64_t>(static_cast<uint64_t>(a) * static_cast<uint64_t>(b));
+}
+
 inline uint32_t FloatBits(float f) {
     return std::bit_cast<uint32_t>(f);
 }

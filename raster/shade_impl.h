@@ -225,9 +225,10 @@ void DrawTriangle(const std::vector<std::vector<PassDraw>>& variants, const Setu
                 mask &= ~(static_cast<unsigned>(x < t.x0 || x > t.x1) << l);
             }
             for (int e = 0; e < 3 && mask; ++e) {
-                const int64_t base = t.edge[e].c - t.edge[e].dcdx * gx + t.edge[e].dcdy * gy;
+                const int64_t base =
+                    WrapAdd64(WrapSub64(t.edge[e].c, t.edge[e].dcdx * gx), t.edge[e].dcdy * gy);
                 for (int l = 0; l < kLanes; ++l)
-                    mask &= ~(static_cast<unsigned>(base + laneOffset[e][l] <= 0) << l);
+                    mask &= ~(static_cast<unsigned>(WrapAdd64(base, laneOffset[e][l]) <= 0) << l);
             }
             if (mask) DrawGroup(variants, triangles, i, gx, gy, mask, &qa, footprints);
         }

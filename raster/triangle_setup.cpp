@@ -41,8 +41,8 @@ Edge MakeEdge(const Fixed& p, int i) {
     const int j = (i + 1) % 3;
     const int64_t dcdx = WrapSub(p.y[i], p.y[j]);  // 32-bit differences, as the reference
     const int64_t dcdy = WrapSub(p.x[i], p.x[j]);
-    int64_t c = dcdx * p.x[i] - dcdy * p.y[i];
-    if (dcdx < 0 || (dcdx == 0 && dcdy < 0)) c += 1;
+    int64_t c = WrapSub64(dcdx * p.x[i], dcdy * p.y[i]);
+    if (dcdx < 0 || (dcdx == 0 && dcdy < 0)) c = WrapAdd64(c, 1);
     return {c, dcdx * 256, dcdy * 256};
 }
 

@@ -18,6 +18,8 @@
 #include <cmath>
 #include <cstdint>
 
+#include "raster/numeric.h"
+
 namespace pem::raster {
 
 constexpr int kSubpixelBits = 8;
@@ -61,7 +63,7 @@ void SetupAttributePlanes(const WindowVertex& v0, const WindowVertex& v1, const 
 // Edge test of one pixel.
 inline bool Inside(const TriangleSetup& t, int x, int y) {
     for (const Edge& e : t.edge)
-        if (e.c - e.dcdx * x + e.dcdy * y <= 0) return false;
+        if (WrapAdd64(WrapSub64(e.c, e.dcdx * x), e.dcdy * y) <= 0) return false;
     return true;
 }
 
