@@ -42,11 +42,19 @@
 
 namespace pem::pipeline {
 
-// The maps' face size when none is asked for (infer, bake, demo).
+// The lens maps when none is asked for (infer, bake, demo), chosen on scene (a) at the demo's
+// settings: hybrid and PEM frames at sample 0 against the traced two-term frame, lens pixels
+// (docs/method.md §5).
+//  - Face size 128. At 256 (with radiance scale 4) the mirror cup gains 3.4 dB more (hybrid
+//    28.6, PEM mode 31.7), but inference and the report's error budget take twice as long and
+//    the demo no longer finishes in 5 minutes.
+//  - LOD bias -4: every subpixel is a row of the fit, so the fit can use texels finer than the
+//    footprint, which the hardware's MIP filter would otherwise blur (teapot +0.3 dB, cup
+//    +1.5, cup in PEM mode +2.0).
+//  - Radiance scale 2: 8-bit maps reach twice the unit radiance (teapot +0.35 dB, cup +0.35;
+//    4 gives the teapot +0.2 dB more and costs the cup 0.45 dB).
 inline constexpr int kDefaultMapResolution = 128;
-// The maps' radiance scale (runtime/map_set.h) when none is asked for: 8-bit maps reach twice
-// the unit radiance. Scene (a), hybrid at sample 0 vs 1: teapot +0.35 dB, mirror cup +0.35 dB
-// (PEM mode +0.75); 4 gave the teapot +0.5 dB and cost the cup 0.25 dB.
+inline constexpr float kDefaultLodBias = -4.0f;
 inline constexpr float kDefaultRadianceScale = 2.0f;
 
 // LSMR with at most 150 iterations and atol 1e-4, a log line every 25 iterations: what every
@@ -58,7 +66,8 @@ struct InferJobOptions {
     int res = kDefaultMapResolution;
     int threads = 1;
     // The target hardware: profile, the maps' sampler and radiance scale.
-    runtime::MapHardware hardware{.radianceScale = kDefaultRadianceScale};
+    runtime::MapHardware hardware{.radianceScale = kDefaultRadianceScale,
+                                  .lodBias = kDefaultLodBias};
     bool hdr = false;              // float radiance, bounds [0, inf)
     double tessT = 5.0;            // tessellation t in subpixels (1 / spp pixels)
     std::vector<int> views;        // empty: all

@@ -30,6 +30,7 @@ json ManifestJson(const PemManifest& m) {
             {"profile", m.hardware.profile},
             {"max_anisotropy", m.hardware.maxAnisotropy},
             {"radiance_scale", m.hardware.radianceScale},
+            {"lod_bias", m.hardware.lodBias},
             {"full_tree_depth", m.fullTreeDepth},
             {"min_weight", m.minWeight},
             {"fresnel", m.fresnel},
@@ -71,6 +72,10 @@ PemManifest ManifestFromJson(const json& j) {
     m.hardware.radianceScale = j.value("radiance_scale", 1.0f);  // absent in older directories
     if (!runtime::IsRadianceScale(m.hardware.radianceScale))
         throw std::runtime_error("radiance_scale must be a power of two in [1, 64]");
+    m.hardware.lodBias = j.value("lod_bias", 0.0f);  // absent in older directories: none
+    if (!(m.hardware.lodBias >= -runtime::kMaxLodBias &&
+          m.hardware.lodBias <= runtime::kMaxLodBias))
+        throw std::runtime_error("lod_bias must lie in [-4, 4]");
     m.fullTreeDepth = j.at("full_tree_depth").get<int>();
     m.minWeight = j.at("min_weight").get<double>();
     m.fresnel = j.at("fresnel").get<std::string>();

@@ -32,14 +32,22 @@ struct MapHardware {
     // scaling is exact): 8-bit maps reach incident radiance up to the scale, at steps of
     // scale / 255; the renderers multiply the lens frames by it (a frame saturates at the scale).
     float radianceScale = 1.0f;
+    // GL_TEXTURE_LOD_BIAS of the lens maps: below 0 the hardware reads finer levels than the
+    // footprint asks for, which the fit (every subpixel a row) can use where a sharp
+    // reflection would otherwise be blurred by the MIP filter.
+    float lodBias = 0.0f;
 
-    // Trilinear, seamless, with the anisotropy.
+    // Trilinear, seamless, with the anisotropy and the LOD bias.
     raster::SamplerState Sampler() const {
         raster::SamplerState s;
         s.maxAnisotropy = maxAnisotropy;
+        s.lodBias = lodBias;
         return s;
     }
 };
+
+// The LOD biases MapHardware accepts: [-kMaxLodBias, kMaxLodBias].
+constexpr float kMaxLodBias = 4.0f;
 
 // A radiance scale MapHardware accepts: a power of two in [1, 64].
 inline bool IsRadianceScale(float s) {

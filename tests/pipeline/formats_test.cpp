@@ -245,6 +245,34 @@ TEST(PemManifest, HardwareRoundTripsAndImpossibleAnisotropyIsRefused) {
     fs::remove_all(dir);
 }
 
+TEST(PemManifest, LodBiasRoundTripsWithinItsRange) {
+    const fs::path dir = FreshDir("pem_manifest_lod_bias");
+    const TraceManifest t = SmallTrace(dir, 1);
+    PemManifest m = PemManifestFor(t, (dir / "pem").string(), 32, false, {},
+                                   runtime::MapHardware{"llvmpipe", 1.0f, 2.0f, -2.5f});
+    fs::create_directories(m.dir);
+    WritePemManifest(m);
+    EXPECT_EQ(ReadPemManifest(m.dir).hardware.lodBias, -2.5f);
+    EXPECT_EQ(ReadPemManifest(m.dir).hardware.Sampler().lodBias, -2.5f);
+    const std::string path = (fs::path(m.dir) / kManifestJson).string();
+    const std::string text = ReadFile(path);
+    const std::string key = "\"lod_bias\": -2.5";
+    const size_t at = text.find(key);
+    ASSERT_NE(at, std::string::npos);
+    for (const char* bad : {"-4.5", "4.01", "1e9", "\"x\"", "null"}) {
+        std::string t2 = text;
+        t2.replace(at, key.size(), std::string("\"lod_bias\": ") + bad);
+        WriteFile(path, t2);
+        EXPECT_EQ(ErrorOf([&] { ReadPemManifest(m.dir); }).rfind(path + ": ", 0), 0u) << bad;
+    }
+    // Absent (directories written before the key existed): no bias.
+    std::string old = text;
+    old.replace(at, key.size() + 1, "");
+    WriteFile(path, old);
+    EXPECT_EQ(ReadPemManifest(m.dir).hardware.lodBias, 0.0f);
+    fs::remove_all(dir);
+}
+
 TEST(PemManifest, RadianceScaleRoundTripsAndOnlyPowersOfTwoAreTaken) {
     const fs::path dir = FreshDir("pem_manifest_scale");
     const TraceManifest t = SmallTrace(dir, 1);

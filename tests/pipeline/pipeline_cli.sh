@@ -63,6 +63,16 @@ grep -q '"max_anisotropy": 16.0' "$work/s/pem16/manifest.json" ||
 if "$pemref" infer "$work/s/trace" --out "$work/s/bad" --anisotropy 17 --quiet 2>/dev/null; then
   echo "FAIL: --anisotropy 17 accepted"; exit 1
 fi
+# The LOD bias: the default is kept in the manifest; another bias draws other frames; a bias
+# outside [-4, 4] is refused.
+grep -q '"lod_bias": -4.0' "$work/s/pem/manifest.json" ||
+  { echo "FAIL: the default LOD bias -4 not in the manifest"; exit 1; }
+"$pemref" infer "$work/s/trace" --out "$work/s/pemlb0" --res 16 --lod-bias 0 --threads 2 --quiet
+"$pemref" render "$work/s/pemlb0" --view sample:1 --method pem --threads 2 --quiet -o "$work/s/lb0.png"
+! cmp -s "$work/s/lb0.png" "$work/s/a1.png" || { echo "FAIL: the LOD bias changes nothing"; exit 1; }
+if "$pemref" infer "$work/s/trace" --out "$work/s/bad" --lod-bias -5 --quiet 2>/dev/null; then
+  echo "FAIL: --lod-bias -5 accepted"; exit 1
+fi
 # Golden images of its PEM directory: the same bytes with 1 and 2 threads, and check passes.
 mkdir -p "$work/gs"
 cat > "$work/gs/suite.json" <<'EOF'

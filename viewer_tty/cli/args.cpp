@@ -59,6 +59,9 @@ void AddMapHardwareOptions(CLI::App* sub, runtime::MapHardware* hardware) {
     sub->add_option("--anisotropy", hardware->maxAnisotropy,
                     "the lens maps' GL_TEXTURE_MAX_ANISOTROPY (1: off, 2..16)")
         ->check(CLI::Range(1.0, 16.0));
+    sub->add_option("--lod-bias", hardware->lodBias,
+                    "the lens maps' GL_TEXTURE_LOD_BIAS (-4..4; below 0: finer levels)")
+        ->check(CLI::Range(-runtime::kMaxLodBias, runtime::kMaxLodBias));
     sub->add_option("--radiance-scale", hardware->radianceScale,
                     "the maps hold radiance / S (S: 1, 2, 4 .. 64)")
         ->check([](const std::string& v) -> std::string {
