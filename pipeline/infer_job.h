@@ -46,8 +46,8 @@ namespace pem::pipeline {
 // settings: hybrid and PEM frames at sample 0 against the traced two-term frame, lens pixels
 // (docs/method.md §5).
 //  - Face size 128. At 256 (with radiance scale 4) the mirror cup gains 3.4 dB more (hybrid
-//    28.6, PEM mode 31.7), but inference and the report's error budget take twice as long and
-//    the demo no longer finishes in 5 minutes.
+//    28.6, PEM mode 31.7), but inference takes 1.5 times and the report (its error budget)
+//    twice as long, and the demo no longer finishes in 5 minutes.
 //  - LOD bias -4: every subpixel is a row of the fit, so the fit can use texels finer than the
 //    footprint, which the hardware's MIP filter would otherwise blur (teapot +0.3 dB, cup
 //    +1.5, cup in PEM mode +2.0).
