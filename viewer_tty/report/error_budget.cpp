@@ -155,37 +155,39 @@ GroupBudget SampleBudget(runtime::Renderer& renderer, const pipeline::TraceManif
                                       }),
                            ref, w, h, mask);
     };
-    const auto exact = [&](int res, ExactRange range) {
-        return ExactLookupLayers(renderer.tracer(), cam, trace.spp, g, Targets(im, g), im.b[0], res,
-                                 range, s.threads);
-    };
-    const int res = renderer.maps().res;
-    const ExactRange maps{true, static_cast<double>(renderer.maps().hardware.radianceScale)};
-    AddStage(&b, "best maps, exact lookups", psnrOf(exact(2 * res, {})));
-    AddStage(&b, "nonnegative maps", psnrOf(exact(2 * res, {true, 0.0})));
-    AddStage(&b, "maps' range", psnrOf(exact(2 * res, maps)));
-    AddStage(&b, "map resolution", psnrOf(exact(res, maps)));
+    const ExactStages exact = ExactLookupStages(
+        renderer.tracer(), cam, trace.spp, g, Targets(im, g), im.b[0], renderer.maps().res,
+        static_cast<double>(renderer.maps().hardware.radianceScale), s.threads);
+    AddStage(&b, "best maps, exact lookups", psnrOf(exact.unbounded));
+    AddStage(&b, "nonnegative maps", psnrOf(exact.nonnegative));
+    AddStage(&b, "maps' range", psnrOf(exact.inRange));
+    AddStage(&b, "map resolution", psnrOf(exact.ownResolution));
     AddStage(&b, "texgen, filtering, solve", psnrOf(renderer.LayerImages(cam, s, g.index, view)));
     AddStage(&b, "hardware frame", DisplayPsnr(RgbOf(hybrid.image), ref, w, h, mask));
     return b;
 }
 
-// Hybrid against the ray tracer at K×K on the pixels that see each group.
-std::vector<double> HybridVsTraced(runtime::Renderer& renderer, const raster::Camera& cam,
-                                   const runtime::RenderSettings& s, int spp) {
-    const runtime::RenderedFrame hybrid = renderer.Render(cam, s);
-    runtime::RenderSettings rs = s;
-    rs.method = runtime::Method::RayTraced;
-    rs.spp = spp;
-    const runtime::RenderedFrame traced = renderer.Render(cam, rs);
+// A hybrid frame against the ray tracer's at K×K on the pixels that see each of the groups.
+std::vector<double> HybridVsTraced(const runtime::RenderedFrame& hybrid,
+                                   const trace::FloatImage& traced, size_t groups) {
     std::vector<double> out;
-    for (size_t g = 0; g < renderer.maps().groups.size(); ++g) {
+    for (size_t g = 0; g < groups; ++g) {
         std::vector<uint8_t> mask(hybrid.groupOf.size());
         for (size_t p = 0; p < mask.size(); ++p) mask[p] = hybrid.groupOf[p] == int(g);
         out.push_back(
-            DisplayPsnr(RgbOf(hybrid.image), RgbOf(traced.image), cam.width, cam.height, mask));
+            DisplayPsnr(RgbOf(hybrid.image), RgbOf(traced), traced.width, traced.height, mask));
     }
     return out;
+}
+
+// The same at an off-sample position: both frames rendered there.
+std::vector<double> HybridVsTracedAt(runtime::Renderer& renderer, const raster::Camera& cam,
+                                     const runtime::RenderSettings& s, int spp) {
+    runtime::RenderSettings rs = s;
+    rs.method = runtime::Method::RayTraced;
+    rs.spp = spp;
+    return HybridVsTraced(renderer.Render(cam, s), renderer.Render(cam, rs).image,
+                          renderer.maps().groups.size());
 }
 
 }  // namespace
@@ -202,11 +204,14 @@ std::vector<GroupBudget> ErrorBudget(runtime::Renderer& renderer,
     const runtime::RenderedFrame hybrid = renderer.Render(sample, s);
     for (const runtime::LensGroupEm& g : renderer.maps().groups)
         out.push_back(SampleBudget(renderer, trace, g, hybrid, s));
-    // Step 2: off the samples, against the same measure at the sample.
-    const std::vector<double> atSample = HybridVsTraced(renderer, sample, s, trace.spp);
+    // Step 2: off the samples, against the same measure at the sample (the trace's reference
+    // there is the ray tracer's frame at K×K).
+    const std::vector<double> atSample = HybridVsTraced(
+        hybrid, pipeline::ReadFrameImage(trace, renderer.maps().inferred.front(), "reference"),
+        renderer.maps().groups.size());
     for (size_t k = 1; k < positions.size(); ++k) {
         const std::vector<double> there =
-            HybridVsTraced(renderer, positions[k].camera, s, trace.spp);
+            HybridVsTracedAt(renderer, positions[k].camera, s, trace.spp);
         for (const runtime::LensGroupEm& g : renderer.maps().groups) {
             GroupBudget b{GroupName(g), positions[k].name, 0, {}};
             AddStage(&b, "hybrid at the sample", atSample[size_t(g.index)]);

@@ -7,12 +7,14 @@
 // these shells can show (parallax, view and path dependence); nonnegative, what the negative
 // texels of that fit bought (a least-squares fit sharpens with them); in the maps' range, what
 // clamping the incident radiance costs; at the maps' own resolution, what the resolution costs;
-// what the hardware adds on top of it is the cost of its texgen and filtering.
+// what the hardware adds on top of it is the cost of its texgen and filtering. The subpixels
+// are traced once and the rows built once per resolution; the nonnegative fit starts from the
+// unbounded one clamped, the fit in range from the nonnegative one.
 //
-//   auto layers = ExactLookupLayers(tracer, camera, k, group, targets, coverage, 256, {}, 2);
+//   ExactStages st = ExactLookupStages(tracer, camera, k, group, targets, coverage, 128, 2.0, 2);
 //
 // Conventions: targets[τ][l] is layer_l_τ with the lens coverage divided out (RGBA, the maps'
-// premultiplied values); the result has Renderer::LayerImages' layout ([term][layer] RGBA per
+// premultiplied values); each stage has Renderer::LayerImages' layout ([term][layer] RGBA per
 // pixel, the layers that have records). Face coordinates from raster's cube lookup; bilinear
 // taps clamped to their face.
 // Not here: the stage table (error_budget.h).
@@ -28,15 +30,18 @@
 
 namespace pem::report {
 
-// The texel values the fit may take.
-struct ExactRange {
-    bool nonnegative = false;  // false: unbounded
-    double maxRadiance = 0.0;  // > 0 (with nonnegative): RGB ≤ it, alpha ≤ 1
+// The fits the budget compares, each in Renderer::LayerImages' layout.
+struct ExactStages {
+    std::vector<std::vector<raster::ImageF>> unbounded;      // twice the maps' resolution
+    std::vector<std::vector<raster::ImageF>> nonnegative;    // the same, texels >= 0
+    std::vector<std::vector<raster::ImageF>> inRange;        // RGB in [0, maxRadiance], alpha <= 1
+    std::vector<std::vector<raster::ImageF>> ownResolution;  // in range at the maps' resolution
 };
 
-std::vector<std::vector<raster::ImageF>> ExactLookupLayers(
-    const trace::Tracer& tracer, const raster::Camera& camera, int k,
-    const runtime::LensGroupEm& group, const std::vector<std::vector<trace::FloatImage>>& targets,
-    const trace::FloatImage& coverage, int res, ExactRange range, int threads);
+ExactStages ExactLookupStages(const trace::Tracer& tracer, const raster::Camera& camera, int k,
+                              const runtime::LensGroupEm& group,
+                              const std::vector<std::vector<trace::FloatImage>>& targets,
+                              const trace::FloatImage& coverage, int res, double maxRadiance,
+                              int threads);
 
 }  // namespace pem::report
