@@ -41,6 +41,9 @@ ImageBlock SelectImageRows(const raster::RenderingMatrix& a, const Vector& known
     };
     ImageBlock blk;
     blk.a.cols = static_cast<int64_t>(colEnd - colBegin);
+    blk.a.rowPtr.reserve(a.rowPtr.size());  // at most every row, every tap
+    blk.a.col.reserve(a.col.size());
+    blk.a.val.reserve(a.val.size());
     std::vector<uint32_t> cols;
     std::vector<double> vals;
     for (int64_t p = 0; p < a.rows / kChannels; ++p) {
@@ -141,6 +144,9 @@ std::vector<int32_t> ActiveTexels(const CsrMatrix& image, const CubeLayout& layo
 CsrMatrix RestrictColumns(const CsrMatrix& m, const std::vector<int32_t>& index, int64_t cols) {
     CsrMatrix out;
     out.cols = cols;
+    out.rowPtr.reserve(m.rowPtr.size());  // at most every row, every entry
+    out.col.reserve(m.col.size());
+    out.val.reserve(m.val.size());
     std::vector<uint32_t> rc;
     std::vector<double> rv;
     for (int64_t r = 0; r < m.rows; ++r) {

@@ -64,6 +64,12 @@ CsrMatrix StackRows(const std::vector<RowBlock>& blocks) {
     CsrMatrix m;
     if (blocks.empty()) return m;
     m.cols = blocks.front().matrix->cols;
+    size_t rows = 0, entries = 0;
+    for (const RowBlock& b : blocks)
+        rows += b.matrix->rowPtr.size(), entries += b.matrix->col.size();
+    m.rowPtr.reserve(rows);
+    m.col.reserve(entries);
+    m.val.reserve(entries);
     for (const RowBlock& b : blocks) {
         const CsrMatrix& s = *b.matrix;
         if (s.cols != m.cols) throw std::invalid_argument("StackRows: column counts differ");

@@ -166,6 +166,14 @@ raster::RenderingMatrix KeepRows(const raster::RenderingMatrix& a,
     raster::RenderingMatrix out;
     out.rows = 4 * static_cast<int64_t>(cells.size());
     out.cols = a.cols;
+    size_t taps = 0;
+    for (uint32_t cell : cells)
+        taps += static_cast<size_t>(a.rowPtr[4 * size_t{cell} + 4] - a.rowPtr[4 * size_t{cell}]);
+    out.col.reserve(taps);
+    out.val.reserve(taps);
+    out.rowPtr.reserve(4 * cells.size() + 1);
+    out.offset.reserve(4 * cells.size());
+    out.rendered.reserve(4 * cells.size());
     out.rowPtr.push_back(0);
     for (uint32_t cell : cells)
         for (size_t r = 4 * size_t{cell}; r < 4 * size_t{cell} + 4; ++r) {

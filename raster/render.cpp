@@ -356,7 +356,12 @@ RenderingMatrix BuildRenderingMatrix(const PreparedFrame& prepared, const Render
     std::vector<uint32_t> depth;
     DrawFrame({&prepared, options, nullptr, nullptr, &m, &rows, ClearedDepth(frame, &depth)});
 
-    // Merge duplicate columns per row (sorted), then CSR.
+    // Merge duplicate columns per row (sorted), then CSR; each row freed once copied.
+    size_t taps = 0;
+    for (const auto& row : rows) taps += row.size();
+    m.col.reserve(taps);
+    m.val.reserve(taps);
+    m.rowPtr.reserve(rows.size() + 1);
     m.rowPtr.push_back(0);
     for (auto& row : rows) {
         std::sort(row.begin(), row.end(),
@@ -371,6 +376,7 @@ RenderingMatrix BuildRenderingMatrix(const PreparedFrame& prepared, const Render
             m.val.push_back(row[k].second);
         }
         m.rowPtr.push_back(static_cast<int64_t>(m.col.size()));
+        std::vector<std::pair<uint32_t, double>>().swap(row);
     }
     const RenderResult r = Render(prepared, options);
     m.rendered.resize(4 * n);
