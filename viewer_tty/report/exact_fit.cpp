@@ -124,8 +124,9 @@ raster::Frame UnknownCube(int width, int height, int res) {
 
 using Layers = std::vector<std::vector<raster::ImageF>>;
 
-// Iterations of every fit, each from the prior value: a fit started from the one before (the
-// unbounded one clamped) ends elsewhere within these iterations, 1.4–2.9 dB lower on scene (a).
+// Iterations of every fit, each from the prior value. Measured on scene (a): 1000 move every
+// stage by at most 0.1 dB but the cup's nonnegative fit (+1.0 dB); 100 iterations started from
+// the fit before, clamped, end 0.3–2.9 dB lower than these.
 constexpr int kIterations = 300;
 
 // One layer's system at one resolution, RGB in the units radiance / scale.
