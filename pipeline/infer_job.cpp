@@ -22,6 +22,7 @@
 #include "pipeline/pem_manifest.h"
 #include "raster/profile.h"
 #include "raster/render.h"
+#include "raster/texel_index.h"
 #include "runtime/convex_hull.h"
 #include "runtime/lens_paths.h"
 #include "runtime/mirror_geometry.h"
@@ -223,7 +224,7 @@ struct StackedRows {
     std::vector<OwnRows> own;
 };
 
-StackedRows StackRows(const std::vector<MapInput>& inputs, int w, int h, int k,
+StackedRows StackRows(const std::vector<MapInput>& inputs, int w, int h, int k, int res,
                       const InferJobOptions& opt) {
     StackedRows s;
     // The profile's texel selection with exact weights (its LOD rule, no rounding).
@@ -231,7 +232,7 @@ StackedRows StackRows(const std::vector<MapInput>& inputs, int w, int h, int k,
     ro.profile = raster::Profile::Linear;
     ro.threads = opt.threads;
     for (size_t i = 0; i < inputs.size(); ++i) {
-        raster::Frame f = UnknownFrame(k * w, k * h, opt.res, opt.hardware.Sampler(), inputs[i]);
+        raster::Frame f = UnknownFrame(k * w, k * h, res, opt.hardware.Sampler(), inputs[i]);
         std::vector<uint32_t> cells = CoveredCells(inputs[i]);
         raster::RenderingMatrix a =
             KeepRows(raster::BuildRenderingMatrix(raster::PreparedFrame(f), ro), cells);
@@ -248,6 +249,60 @@ StackedRows StackRows(const std::vector<MapInput>& inputs, int w, int h, int k,
                              std::move(cells)});
     }
     return s;
+}
+
+// The face size of a map (PEM §4 "EM Resolution") -----------------------------------------
+
+// The share of the sample's own covered subpixels whose finest tap lies on each MIP level of a
+// face-size-maxRes cube, its texgen passes drawn with no LOD bias: the "test rendering" that
+// shows "the most detailed EM MIPMAP level actually accessed by the graphics system".
+std::vector<double> LevelsAccessed(const std::vector<MapInput>& inputs, int w, int h, int k,
+                                   int maxRes, const InferJobOptions& opt) {
+    raster::RenderOptions ro = raster::ProfileNamed(opt.hardware.profile).options;
+    ro.profile = raster::Profile::Linear;
+    ro.threads = opt.threads;
+    raster::SamplerState sampler = opt.hardware.Sampler();
+    sampler.lodBias = 0.0f;
+    std::vector<double> share;
+    double total = 0.0;
+    for (const MapInput& in : inputs) {
+        if (!in.own) continue;
+        const raster::Frame f = UnknownFrame(k * w, k * h, maxRes, sampler, in);
+        const raster::TexelIndexer index(f.textures);
+        const std::vector<uint32_t> cells = CoveredCells(in);
+        const raster::RenderingMatrix a =
+            KeepRows(raster::BuildRenderingMatrix(raster::PreparedFrame(f), ro), cells);
+        share.resize(f.textures[0].levels.size(), 0.0);
+        for (size_t c = 0; c < cells.size(); ++c) {  // the red row of each subpixel
+            const auto first = static_cast<size_t>(a.rowPtr[4 * c]);
+            const auto last = static_cast<size_t>(a.rowPtr[4 * c + 1]);
+            if (first == last) continue;
+            const uint32_t finest =  // levels are numbered finest first
+                *std::min_element(a.col.begin() + first, a.col.begin() + last) / 4;
+            size_t level = 0;
+            while (level + 1 < share.size() &&
+                   index.LevelBase(0, static_cast<int>(level) + 1) <= finest)
+                ++level;
+            share[level] += 1.0;
+            total += 1.0;
+        }
+    }
+    for (double& s : share) s = total > 0.0 ? s / total : 0.0;
+    return share;
+}
+
+// The face size whose level 0 is the finest level that kResolutionShare of the subpixels read
+// at face size maxRes, within [opt.res, maxRes]: a few magnified subpixels (silhouettes,
+// caustics) do not ask for a larger map; a map that most subpixels minify is not enlarged.
+inline constexpr double kResolutionShare = 0.1;
+
+int ResolutionAccessed(const std::vector<double>& share, int minRes, int maxRes) {
+    double reached = 0.0;
+    for (size_t level = 0; level < share.size(); ++level) {
+        reached += share[level];
+        if (reached >= kResolutionShare) return std::max(minRes, maxRes >> level);
+    }
+    return minRes;
 }
 
 // Solving one map ----------------------------------------------------------------------------
@@ -290,7 +345,12 @@ MapReport SolveMap(const std::vector<MapInput>& inputs, const InferJobOptions& o
                    const TraceManifest& tm, const std::string& dir, MapReport rep) {
     // Step 1: the rendering matrices of the texgen passes and the stacked system.
     const auto t0 = Clock::now();
-    const StackedRows s = StackRows(inputs, tm.width, tm.height, tm.spp, opt);
+    rep.res = opt.res;
+    if (opt.maxRes > opt.res) {
+        rep.levelsAccessed = LevelsAccessed(inputs, tm.width, tm.height, tm.spp, opt.maxRes, opt);
+        rep.res = ResolutionAccessed(rep.levelsAccessed, opt.res, opt.maxRes);
+    }
+    const StackedRows s = StackRows(inputs, tm.width, tm.height, tm.spp, rep.res, opt);
     rep.matrixSeconds = Since(t0);
     const infer::LinearSystem sys =
         infer::BuildSystem(s.a, s.frame, 0, s.target, opt.weights, opt.system);
@@ -551,6 +611,10 @@ InferJobResult RunInferJob(const InferJobOptions& opt) {
     if (opt.res < 1 || (opt.res & (opt.res - 1)) != 0 || opt.res > 4096)
         throw base::InputError("--res " + std::to_string(opt.res),
                                "expected a power of two in [1, 4096]");
+    if (opt.maxRes != 0 &&
+        (opt.maxRes < opt.res || (opt.maxRes & (opt.maxRes - 1)) != 0 || opt.maxRes > 4096))
+        throw base::InputError("--max-res " + std::to_string(opt.maxRes),
+                               "expected a power of two in [--res, 4096]");
     InferJobResult result;
     result.trace = ReadTraceManifest(opt.traceDir);
     const TraceManifest& tm = result.trace;
@@ -588,7 +652,8 @@ void WriteInferOutputs(const InferJobOptions& o, const InferJobResult& r) {
     rec.maps = r.maps;
     rec.leftOut = r.leftOut;
     WriteInferJson(rec);
-    WritePemManifest(PemManifestFor(r.trace, o.outDir, o.res, o.hdr, o.views, o.hardware));
+    WritePemManifest(PemManifestFor(r.trace, o.outDir, o.res, o.hdr, o.views, o.hardware,
+                                    std::max(o.res, o.maxRes)));
 }
 
 }  // namespace pem::pipeline

@@ -18,6 +18,9 @@
 // hybrid paper's confidence is 1); the terms' rows stacked; infer::BuildSystem with the
 // active texels (observed + rings), LSMR with bounds ([0, 1] or HDR), FillUnobserved, files.
 // `single`: one more map, `single`, from the whole exit radiance b_τ on one sphere.
+// With maxRes > res, each map's face size comes from a test rendering (PEM §4 "EM Resolution"):
+// its sample's passes drawn at face size maxRes without LOD bias; the size whose level 0 is the
+// finest level 10 % of the covered subpixels read, within [res, maxRes].
 // With `neighbours` = k, the layer maps' systems also hold the rows of the k samples on each side
 // (their own vertex paths, texgen and traced layer images, weight × neighbourWeight): the
 // simultaneous solve of hybrid §4.3, so a map also fits what is seen just off its sample.
@@ -47,7 +50,9 @@ namespace pem::pipeline {
 // (docs/method.md §5).
 //  - Face size 128. At 256 (with radiance scale 4) the mirror cup gains 3.4 dB more (hybrid
 //    28.6, PEM mode 31.7), but inference takes 1.5 times and the report (its error budget)
-//    twice as long, and the demo no longer finishes in 5 minutes.
+//    twice as long, and the demo no longer finishes in 5 minutes. `--max-res 256` chooses 256
+//    for every map of scene (a) but the cup's local one (the teapot's refraction magnifies
+//    more than the cup's reflection), and costs 2.2 times the inference: teapot +0.9 dB.
 //  - LOD bias -4: every subpixel is a row of the fit, so the fit can use texels finer than the
 //    footprint, which the hardware's MIP filter would otherwise blur (teapot +0.3 dB, cup
 //    +1.5, cup in PEM mode +2.0).
@@ -64,6 +69,9 @@ infer::SolveOptions DefaultSolveOptions();
 struct InferJobOptions {
     std::string traceDir, outDir, exportDir;
     int res = kDefaultMapResolution;
+    // > res: each map's face size from a test rendering of its sample (the finest MIP level
+    // its subpixels read at this size, PEM §4 "EM Resolution"), between res and maxRes.
+    int maxRes = 0;
     int threads = 1;
     // The target hardware: profile, the maps' sampler and radiance scale.
     runtime::MapHardware hardware{.radianceScale = kDefaultRadianceScale,

@@ -17,6 +17,7 @@ json MapJson(const MapReport& m) {
                {"layer", m.layer},
                {"name", m.name},
                {"file", MapFile(m.view, m.group, m.name)},
+               {"res", m.res},
                {"rows", m.rows},
                {"cols", m.cols},
                {"nnz", m.nnz},
@@ -36,6 +37,7 @@ json MapJson(const MapReport& m) {
                  {"render_seconds", m.renderSeconds},
                  {"fill_seconds", m.fillSeconds},
                  {"write_seconds", m.writeSeconds}}}};
+    if (!m.levelsAccessed.empty()) jm["levels_accessed"] = m.levelsAccessed;
     if (m.directRmse8 >= 0.0) {
         jm["rmse_8bit_direct"] = m.directRmse8;
         jm["direct_seconds"] = m.directSeconds;
@@ -50,6 +52,8 @@ MapReport MapFromJson(const json& j) {
     m.term = j.at("term").get<std::string>();
     m.layer = j.at("layer").get<int>();
     m.name = j.at("name").get<std::string>();
+    m.res = j.value("res", 0);  // absent in older directories
+    m.levelsAccessed = j.value("levels_accessed", std::vector<double>{});
     m.rows = j.at("rows").get<int64_t>();
     m.cols = j.at("cols").get<int64_t>();
     m.nnz = j.at("nnz").get<int64_t>();

@@ -21,8 +21,10 @@ namespace pem::pipeline {
 // One inferred map (one solve).
 struct MapReport {
     int view = 0, group = 0, layer = 0;
-    std::string term;  // "R", "R+T", or "pem" (local/distant split)
-    std::string name;  // file stem under view_v/group_g/
+    std::string term;                    // "R", "R+T", or "pem" (local/distant split)
+    std::string name;                    // file stem under view_v/group_g/
+    int res = 0;                         // the map's face size
+    std::vector<double> levelsAccessed;  // with --max-res: share of subpixels per finest level
     int64_t rows = 0, cols = 0, nnz = 0;
     int64_t observedTexels = 0, filledTexels = 0;
     double buildSeconds = 0.0, solveSeconds = 0.0;

@@ -27,6 +27,7 @@ json ManifestJson(const PemManifest& m) {
             {"size", {m.width, m.height}},
             {"spp", m.spp},
             {"res", m.res},
+            {"max_res", m.maxRes},
             {"profile", m.hardware.profile},
             {"max_anisotropy", m.hardware.maxAnisotropy},
             {"radiance_scale", m.hardware.radianceScale},
@@ -64,6 +65,10 @@ PemManifest ManifestFromJson(const json& j) {
         throw std::runtime_error("bad size or spp");
     if (m.res < 1 || m.res > 4096 || (m.res & (m.res - 1)) != 0)
         throw std::runtime_error("res " + std::to_string(m.res) + " is not a power of two");
+    m.maxRes = j.value("max_res", m.res);  // absent in older directories: every map at res
+    if (m.maxRes < m.res || m.maxRes > 4096 || (m.maxRes & (m.maxRes - 1)) != 0)
+        throw std::runtime_error("max_res " + std::to_string(m.maxRes) +
+                                 " is not a power of two in [res, 4096]");
     m.hardware.profile = j.at("profile").get<std::string>();
     raster::ProfileNamed(m.hardware.profile);                    // throws for an unknown profile
     m.hardware.maxAnisotropy = j.value("max_anisotropy", 1.0f);  // absent in older directories: off
@@ -94,7 +99,8 @@ PemManifest ManifestFromJson(const json& j) {
 }  // namespace
 
 PemManifest PemManifestFor(const TraceManifest& trace, const std::string& pemDir, int res, bool hdr,
-                           const std::vector<int>& inferred, const runtime::MapHardware& hardware) {
+                           const std::vector<int>& inferred, const runtime::MapHardware& hardware,
+                           int maxRes) {
     PemManifest m;
     m.dir = pemDir;
     const std::string scene = ResolveScene(trace.dir, trace.scene, trace.sceneGiven);
@@ -106,6 +112,7 @@ PemManifest PemManifestFor(const TraceManifest& trace, const std::string& pemDir
     m.height = trace.height;
     m.spp = trace.spp;
     m.res = res;
+    m.maxRes = std::max(res, maxRes);
     m.hdr = hdr;
     m.hardware = hardware;
     m.fullTreeDepth = trace.fullTreeDepth;

@@ -25,6 +25,7 @@ struct PemManifest {
     std::string scene, sceneGiven;
     std::string traceDir, traceDirGiven;
     int width = 0, height = 0, spp = 1, res = 0;
+    int maxRes = 0;  // the largest face size of a map (infer --max-res; res when not given)
     runtime::MapHardware hardware;
     int fullTreeDepth = 6;  // the tracer's options of the trace (trace_manifest.h)
     double minWeight = 1e-3;
@@ -38,7 +39,7 @@ struct PemManifest {
 // The manifest of maps inferred at `inferred` (empty: every sample) from `trace` into pemDir.
 PemManifest PemManifestFor(const TraceManifest& trace, const std::string& pemDir, int res, bool hdr,
                            const std::vector<int>& inferred,
-                           const runtime::MapHardware& hardware = {});
+                           const runtime::MapHardware& hardware = {}, int maxRes = 0);
 
 void WritePemManifest(const PemManifest& manifest);  // dir/manifest.json
 PemManifest ReadPemManifest(const std::string& dir);

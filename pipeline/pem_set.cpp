@@ -18,8 +18,8 @@ namespace {
 // Maps by path, loaded on first use; a missing file is remembered as nullptr.
 class MapCache {
   public:
-    MapCache(std::string dir, int res, const raster::SamplerState& sampler)
-        : dir_(std::move(dir)), res_(res), sampler_(sampler) {}
+    MapCache(std::string dir, int res, int maxRes, const raster::SamplerState& sampler)
+        : dir_(std::move(dir)), res_(res), maxRes_(maxRes), sampler_(sampler) {}
 
     const raster::Texture* Get(int view, int group, const std::string& name) {
         const std::string path = MapPath(dir_, view, group, name);
@@ -33,7 +33,8 @@ class MapCache {
     }
 
   private:
-    // The map's 8-bit copy: inside the directory, a readable cube map of the manifest's size.
+    // The map's 8-bit copy: inside the directory, a readable cube map of a size the manifest
+    // allows (a power of two in [res, max_res]).
     raster::Texture Load(const std::string& path) const {
         CheckInside(dir_, path);
         infer::CubeMapF map;
@@ -44,14 +45,16 @@ class MapCache {
         } catch (const std::exception& e) {
             throw base::InputError(path, std::string("cannot read the map: ") + e.what());
         }
-        if (map.size != res_)
-            throw base::InputError(path, "face size " + std::to_string(map.size) +
-                                             ", the manifest says " + std::to_string(res_));
+        if (map.size < res_ || map.size > maxRes_ || (map.size & (map.size - 1)) != 0)
+            throw base::InputError(
+                path, "face size " + std::to_string(map.size) + ", the manifest says " +
+                          std::to_string(res_) +
+                          (maxRes_ > res_ ? " to " + std::to_string(maxRes_) : ""));
         return infer::ToTexture8(map, sampler_);
     }
 
     std::string dir_;
-    int res_;
+    int res_, maxRes_;
     raster::SamplerState sampler_;
     std::map<std::string, std::unique_ptr<raster::Texture>> cache_;
 };
@@ -71,7 +74,7 @@ runtime::MapSet LoadMapSet(const PemManifest& m) {
     tracing.fullTreeDepth = m.fullTreeDepth, tracing.minWeight = m.minWeight;
     tracing.fresnel = m.fresnel;
     set.tracing = tracing.Tracing();
-    auto cache = std::make_shared<MapCache>(m.dir, m.res, m.hardware.Sampler());
+    auto cache = std::make_shared<MapCache>(m.dir, m.res, m.maxRes, m.hardware.Sampler());
     set.map = [cache](int view, int group, const std::string& name) {
         return cache->Get(view, group, name);
     };

@@ -81,6 +81,34 @@ TEST(PemSet, MapsAreTheEightBitCopiesOfTheFiles) {
     fs::remove_all(dir);
 }
 
+// With max_res (infer --max-res), a map may be larger than res, up to max_res; a size outside
+// [res, max_res] or not a power of two is refused with the map's path.
+TEST(PemSet, MapSizesWithinResAndMaxRes) {
+    const fs::path dir = FreshDir("pem_max_res");
+    PemManifest m = MakePemDir(dir);
+    m.maxRes = 32;
+    WritePemManifest(m);
+    EXPECT_EQ(ReadPemManifest(m.dir).maxRes, 32);
+    infer::WriteCubeMapExr(ConstantMap(32, 0.5f, 0.25f, 1.0f, 1.0f),
+                           MapPath(m.dir, 0, 0, "pem_distant"));
+    infer::WriteCubeMapExr(ConstantMap(64, 0.5f, 0.25f, 1.0f, 1.0f),
+                           MapPath(m.dir, 0, 0, "pem_local"));
+    infer::WriteCubeMapExr(ConstantMap(4, 0.5f, 0.25f, 1.0f, 1.0f),
+                           MapPath(m.dir, 0, 0, "layer_0"));
+    const runtime::MapSet set = LoadMapSet(ReadPemManifest(m.dir));
+    const raster::Texture* t = set.map(0, 0, "pem_distant");
+    ASSERT_NE(t, nullptr);
+    EXPECT_EQ(t->width, 32);
+    EXPECT_EQ(t->NumLevels(), 6);
+    EXPECT_THROW(set.map(0, 0, "pem_local"), base::InputError);  // 64 > max_res
+    EXPECT_THROW(set.map(0, 0, "layer_0"), base::InputError);    // 4 < res
+    // A manifest whose max_res is below res is refused.
+    m.maxRes = 4;
+    WritePemManifest(m);
+    EXPECT_THROW(ReadPemManifest(m.dir), base::InputError);
+    fs::remove_all(dir);
+}
+
 TEST(PemSet, OpensAfterTheDirectoryMovedWithItsScene) {
     const fs::path dir = FreshDir("pem_move");
     MakePemDir(dir / "a");

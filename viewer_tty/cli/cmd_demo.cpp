@@ -21,7 +21,7 @@ namespace {
 
 struct DemoArgs {
     std::string out = "out/demo", scene, size = "640x480";
-    int res = pipeline::kDefaultMapResolution, threads = 2;
+    int res = pipeline::kDefaultMapResolution, maxRes = 0, threads = 2;
     bool quiet = false;
 };
 
@@ -39,6 +39,8 @@ void AddDemoCommand(CLI::App& app) {
     sub->add_option("--scene", a.scene, "scene (default: the bundled scene (a))");
     sub->add_option("--size", a.size, "image size WxH");
     sub->add_option("--res", a.res, "cube face size N");
+    sub->add_option("--max-res", a.maxRes,
+                    "each map's face size from a test rendering at its sample, up to N");
     sub->add_option("--threads", a.threads, "worker threads")->check(CLI::Range(1, 256));
     sub->add_flag("--quiet", a.quiet, "no progress lines");
 }
@@ -55,6 +57,7 @@ int RunDemoCommand() {
     bake.outDir = a.out;
     std::tie(bake.trace.width, bake.trace.height) = ParseSize(a.size);
     bake.infer.res = a.res;
+    bake.infer.maxRes = a.maxRes;
     bake.threads = a.threads;
     RunBake(bake, a.quiet);
     report::ReportJobOptions report;

@@ -124,6 +124,15 @@ void AddStage(GroupBudget* b, const std::string& stage, double psnr) {
     b->stages.push_back({stage, psnr, before - psnr});
 }
 
+// The face size of the group's layer maps at the sample (the largest, when infer chose it).
+int GroupMapResolution(const runtime::MapSet& maps, int view, const runtime::LensGroupEm& g) {
+    int res = maps.res;
+    for (size_t l = 0; l < g.layers.size(); ++l)
+        if (const raster::Texture* t = maps.map(view, g.index, pipeline::LayerMapName(int(l))))
+            res = std::max(res, t->width);
+    return res;
+}
+
 // The stages at the sample for one group.
 GroupBudget SampleBudget(runtime::Renderer& renderer, const pipeline::TraceManifest& trace,
                          const runtime::LensGroupEm& g, const runtime::RenderedFrame& hybrid,
@@ -155,9 +164,10 @@ GroupBudget SampleBudget(runtime::Renderer& renderer, const pipeline::TraceManif
                                       }),
                            ref, w, h, mask);
     };
-    const ExactStages exact = ExactLookupStages(
-        renderer.tracer(), cam, trace.spp, g, Targets(im, g), im.b[0], renderer.maps().res,
-        static_cast<double>(renderer.maps().hardware.radianceScale), s.threads);
+    const ExactStages exact =
+        ExactLookupStages(renderer.tracer(), cam, trace.spp, g, Targets(im, g), im.b[0],
+                          GroupMapResolution(renderer.maps(), view, g),
+                          static_cast<double>(renderer.maps().hardware.radianceScale), s.threads);
     AddStage(&b, "best maps, exact lookups", psnrOf(exact.unbounded));
     AddStage(&b, "nonnegative maps", psnrOf(exact.nonnegative));
     AddStage(&b, "maps' range", psnrOf(exact.inRange));
