@@ -292,7 +292,7 @@ std::vector<double> LevelsAccessed(const std::vector<MapInput>& inputs, int w, i
 }
 
 // The face size whose level 0 is the finest level that kResolutionShare of the subpixels read
-// at face size maxRes, within [opt.res, maxRes]: a few magnified subpixels (silhouettes,
+// at face size maxRes, within [minRes, maxRes]: a few magnified subpixels (silhouettes,
 // caustics) do not ask for a larger map; a map that most subpixels minify is not enlarged.
 inline constexpr double kResolutionShare = 0.1;
 

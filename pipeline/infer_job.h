@@ -52,7 +52,7 @@ namespace pem::pipeline {
 //    28.6, PEM mode 31.7), but inference takes 1.5 times and the report (its error budget)
 //    twice as long, and the demo no longer finishes in 5 minutes. `--max-res 256` chooses 256
 //    for every map of scene (a) but the cup's local one (the teapot's refraction magnifies
-//    more than the cup's reflection), and costs 2.2 times the inference: teapot +0.9 dB.
+//    more than the cup's reflection), and costs 1.7-2.2 times the inference: teapot +0.9 dB.
 //  - LOD bias -4: every subpixel is a row of the fit, so the fit can use texels finer than the
 //    footprint, which the hardware's MIP filter would otherwise blur (teapot +0.3 dB, cup
 //    +1.5, cup in PEM mode +2.0).
