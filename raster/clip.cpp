@@ -1,10 +1,12 @@
 // SPDX-License-Identifier: MIT
-// clip.cpp — Mesa's draw module for llvmpipe with an RGBA8 FBO (no guard band: x, y and z are
-// clipped in float by draw_pipe_clip.c; the arithmetic is restated here in our own words).
+// clip.cpp — Mesa's draw module for llvmpipe and softpipe with an RGBA8 FBO (no guard band: x, y
+// and z are clipped in float by draw_pipe_clip.c; the arithmetic is restated here in our own
+// words).
 //
 //  - Clip mask per vertex (unordered compares: NaN is outside): x > w, x + w < 0, y > w,
 //    y + w < 0, z + w < 0, z > w (the z planes only without depth clamp).
-//  - Unclipped vertices: oow = 1 / w; window = fma(p * oow, scale, translate) (JIT code).
+//  - Unclipped vertices: oow = 1 / w; window = fma(p * oow, scale, translate) (llvmpipe's JIT
+//    code), or (p * oow) * scale + translate (softpipe: draw_cliptest_tmp.h, plain C).
 //  - A triangle with any vertex outside is clipped plane by plane (Sutherland-Hodgman, planes in
 //    mask-bit order, distances dot(p, plane) evaluated left to right); triangles entirely
 //    outside one plane are dropped. New vertices: p = out + t * (in - out) on every attribute,
@@ -28,17 +30,20 @@ Viewport MakeViewport(int width, int height) {
     return {{hw, hh, 0.5f}, {hw, hh, 0.5f}};
 }
 
-// Bit k set when the vertex is outside plane k (NaN counts as outside).
-unsigned ClipMask(const glm::vec4& p, bool clipZ) {
+// Bit k set when the vertex is outside plane k (NaN counts as outside). llvmpipe's JIT compares
+// x > w unordered; softpipe's C code tests !(w - x >= 0), which also rejects x = w = +Inf.
+unsigned ClipMask(const glm::vec4& p, bool clipZ, ViewportForm form) {
     auto gt = [](float a, float b) { return !(a <= b); };  // unordered greater
+    auto out = [](float d) { return !(d >= 0.0f); };       // softpipe: distance not >= 0
     unsigned m = 0;
-    if (gt(p.x, p.w)) m |= 1u;
+    const bool plain = form == ViewportForm::Plain;
+    if (plain ? out(p.w - p.x) : gt(p.x, p.w)) m |= 1u;
     if (gt(0.0f, p.x + p.w)) m |= 2u;
-    if (gt(p.y, p.w)) m |= 4u;
+    if (plain ? out(p.w - p.y) : gt(p.y, p.w)) m |= 4u;
     if (gt(0.0f, p.y + p.w)) m |= 8u;
     if (clipZ) {
         if (gt(0.0f, p.z + p.w)) m |= 16u;
-        if (gt(p.z, p.w)) m |= 32u;
+        if (plain ? out(p.w - p.z) : gt(p.z, p.w)) m |= 32u;
     }
     return m;
 }
@@ -50,12 +55,18 @@ struct PolyVertex {
     WindowVertex win;
 };
 
-WindowVertex WindowFused(const ClipVertex& v, const Viewport& vp, int numAttribs) {
+WindowVertex Window(const ClipVertex& v, const Viewport& vp, int numAttribs, ViewportForm form) {
     WindowVertex w;
     const float oow = 1.0f / v.pos.w;
-    w.x = std::fma(v.pos.x * oow, vp.scale[0], vp.trans[0]);
-    w.y = std::fma(v.pos.y * oow, vp.scale[1], vp.trans[1]);
-    w.z = std::fma(v.pos.z * oow, vp.scale[2], vp.trans[2]);
+    if (form == ViewportForm::Fused) {
+        w.x = std::fma(v.pos.x * oow, vp.scale[0], vp.trans[0]);
+        w.y = std::fma(v.pos.y * oow, vp.scale[1], vp.trans[1]);
+        w.z = std::fma(v.pos.z * oow, vp.scale[2], vp.trans[2]);
+    } else {
+        w.x = v.pos.x * oow * vp.scale[0] + vp.trans[0];
+        w.y = v.pos.y * oow * vp.scale[1] + vp.trans[1];
+        w.z = v.pos.z * oow * vp.scale[2] + vp.trans[2];
+    }
     w.oow = oow;
     w.attr = {};
     for (int k = 0; k < numAttribs; ++k) w.attr[k] = v.attr[k];
@@ -92,18 +103,19 @@ PolyVertex Interpolate(float t, const PolyVertex& out, const PolyVertex& in, con
 }  // namespace
 
 void ClipTriangle(const ClipVertex& a, const ClipVertex& b, const ClipVertex& c, int numAttribs,
-                  bool depthClamp, int width, int height, std::vector<WindowTriangle>* out) {
+                  bool depthClamp, int width, int height, ViewportForm form,
+                  std::vector<WindowTriangle>* out) {
     const Viewport vp = MakeViewport(width, height);
     const ClipVertex* v[3] = {&a, &b, &c};
     unsigned masks[3], any = 0, all = ~0u;
     for (int i = 0; i < 3; ++i) {
-        masks[i] = ClipMask(v[i]->pos, !depthClamp);
+        masks[i] = ClipMask(v[i]->pos, !depthClamp, form);
         any |= masks[i];
         all &= masks[i];
     }
     if (any == 0) {
-        out->push_back({WindowFused(a, vp, numAttribs), WindowFused(b, vp, numAttribs),
-                        WindowFused(c, vp, numAttribs)});
+        out->push_back({Window(a, vp, numAttribs, form), Window(b, vp, numAttribs, form),
+                        Window(c, vp, numAttribs, form)});
         return;
     }
     if (all != 0) return;  // entirely outside one plane
@@ -115,7 +127,7 @@ void ClipTriangle(const ClipVertex& a, const ClipVertex& b, const ClipVertex& c,
     for (int i = 0; i < 3; ++i) {
         in[i].clip = v[i]->pos;
         in[i].attr = v[i]->attr;
-        in[i].win = WindowFused(*v[i], vp, numAttribs);
+        in[i].win = Window(*v[i], vp, numAttribs, form);
     }
     int n = 3;
     for (int plane = 0; plane < 6 && n >= 3; ++plane) {
@@ -162,12 +174,23 @@ void ClipTriangle(const ClipVertex& a, const ClipVertex& b, const ClipVertex& c,
     for (int i = 2; i < n; ++i) out->push_back({in[i - 1].win, in[i].win, in[0].win});
 }
 
-bool InsideViewVolume(const glm::vec4& pos, bool depthClamp) {
-    return ClipMask(pos, !depthClamp) == 0;
+ClipVertex PassClipVertex(const Pass& pass, uint32_t index) {
+    const Vertex& v = pass.vertices[index];
+    ClipVertex cv{v.pos, {}};
+    for (int u = 0; u < pass.numUnits; ++u)
+        for (int k = 0; k < 3; ++k) cv.attr[static_cast<size_t>(3 * u + k)] = v.coord[u][k];
+    for (int k = 0; k < 4; ++k)
+        cv.attr[static_cast<size_t>(PassColourAttrib(pass) + k)] = v.color[k];
+    return cv;
 }
 
-WindowVertex ToWindow(const ClipVertex& v, int numAttribs, int width, int height) {
-    return WindowFused(v, MakeViewport(width, height), numAttribs);
+bool InsideViewVolume(const glm::vec4& pos, bool depthClamp, ViewportForm form) {
+    return ClipMask(pos, !depthClamp, form) == 0;
+}
+
+WindowVertex ToWindow(const ClipVertex& v, int numAttribs, int width, int height,
+                      ViewportForm form) {
+    return Window(v, MakeViewport(width, height), numAttribs, form);
 }
 
 }  // namespace pem::raster

@@ -16,7 +16,7 @@ RenderOptions With(Profile p, UnormRounding r, CubeLod lod) {
     return o;
 }
 
-const std::array<ProfileInfo, 4> kProfiles = {{
+const std::array<ProfileInfo, 5> kProfiles = {{
     {"llvmpipe", "Mesa 22.3.6 llvmpipe (Debian 12), bit for bit",
      With(Profile::Llvmpipe, UnormRounding::HalfEven, CubeLod::Llvmpipe)},
     {"linear", "pemref linear: llvmpipe's texel selection with exact weights, float framebuffer",
@@ -25,6 +25,10 @@ const std::array<ProfileInfo, 4> kProfiles = {{
      With(Profile::Llvmpipe, UnormRounding::HalfEven, CubeLod::Exact)},
     {"d3d-rounding", "Mesa 22.3.6 llvmpipe with Direct3D's float to unorm8 rounding",
      With(Profile::Llvmpipe, UnormRounding::HalfUp, CubeLod::Llvmpipe)},
+    {"softpipe",
+     "Mesa 22.3.6 softpipe (Debian 12), bit for bit where modelled: geometry, interpolation, "
+     "blending; uniform textures only, no depth buffer yet",
+     With(Profile::Softpipe, UnormRounding::HalfEven, CubeLod::Llvmpipe), true},
 }};
 
 }  // namespace

@@ -23,27 +23,11 @@
 #include "raster/float_mode.h"
 #include "raster/fragment.h"
 #include "raster/numeric.h"
+#include "raster/softpipe_render.h"
 #include "raster/triangle_setup.h"
 
 namespace pem::raster {
 namespace {
-
-int ColourOffset(const Pass& pass) {
-    return 3 * pass.numUnits;
-}
-
-ClipVertex Fetch(const Pass& pass, uint32_t index) {
-    const Vertex& v = pass.vertices[index];
-    ClipVertex cv{v.pos, {}};
-    for (int u = 0; u < pass.numUnits; ++u)
-        for (int k = 0; k < 3; ++k) cv.attr[static_cast<size_t>(3 * u + k)] = v.coord[u][k];
-    for (int k = 0; k < 4; ++k) cv.attr[static_cast<size_t>(ColourOffset(pass) + k)] = v.color[k];
-    return cv;
-}
-
-uint32_t Index(const Pass& pass, size_t i) {
-    return pass.indices.empty() ? static_cast<uint32_t>(i) : pass.indices[i];
-}
 
 // Per vertex of a pass: inside the view volume (then its window vertex is ready), outside, or
 // not referenced.
@@ -59,16 +43,16 @@ struct PassVertices {
 // every variant's pass.
 void TransformVertices(const Frame& frame, const std::vector<const Pass*>& passes, size_t first,
                        size_t last, PassVertices* pv) {
-    const int numAttribs = ColourOffset(*passes[0]) + 4;
+    const int numAttribs = PassColourAttrib(*passes[0]) + 4;
     for (size_t v = first; v < last; ++v) {
         if (pv->state[v] == VertexState::Unused) continue;
-        if (!InsideViewVolume(passes[0]->vertices[v].pos, frame.depthClamp)) {
+        if (!InsideViewVolume(passes[0]->vertices[v].pos, frame.depthClamp, ViewportForm::Fused)) {
             pv->state[v] = VertexState::Outside;
             continue;
         }
         for (size_t k = 0; k < passes.size(); ++k)
-            pv->window[k][v] = ToWindow(Fetch(*passes[k], static_cast<uint32_t>(v)), numAttribs,
-                                        frame.width, frame.height);
+            pv->window[k][v] = ToWindow(PassClipVertex(*passes[k], static_cast<uint32_t>(v)),
+                                        numAttribs, frame.width, frame.height, ViewportForm::Fused);
     }
 }
 
@@ -80,14 +64,14 @@ void SetupTriangles(const Frame& frame, const std::vector<const Pass*>& passes,
                     const PassVertices& pv, int first, int last,
                     std::vector<std::vector<TriangleSetup>>* setups) {
     const Pass& pass = *passes[0];
-    const int numAttribs = ColourOffset(pass) + 4;
+    const int numAttribs = PassColourAttrib(pass) + 4;
     std::vector<WindowTriangle> clipped;
     TriangleSetup s;
     for (int t = first; t < last; ++t) {
         uint32_t idx[3];
         bool inside = true;
         for (int k = 0; k < 3; ++k) {
-            idx[k] = Index(pass, static_cast<size_t>(3 * t + k));
+            idx[k] = PassIndex(pass, static_cast<size_t>(3 * t + k));
             inside = inside && pv.state[idx[k]] == VertexState::Inside;
         }
         if (inside) {
@@ -106,8 +90,9 @@ void SetupTriangles(const Frame& frame, const std::vector<const Pass*>& passes,
         for (size_t k = 0; k < passes.size(); ++k) {
             const Pass& pk = *passes[k];
             clipped.clear();
-            ClipTriangle(Fetch(pk, idx[0]), Fetch(pk, idx[1]), Fetch(pk, idx[2]), numAttribs,
-                         frame.depthClamp, frame.width, frame.height, &clipped);
+            ClipTriangle(PassClipVertex(pk, idx[0]), PassClipVertex(pk, idx[1]),
+                         PassClipVertex(pk, idx[2]), numAttribs, frame.depthClamp, frame.width,
+                         frame.height, ViewportForm::Fused, &clipped);
             for (const WindowTriangle& w : clipped)
                 if (SetupTriangle(w[0], w[1], w[2], numAttribs, frame.width, frame.height, &s))
                     (*setups)[k].push_back(s);
@@ -311,6 +296,10 @@ RenderResult Render(const PreparedFrame& prepared, const RenderOptions& options)
 std::vector<RenderResult> RenderFrames(const std::vector<const PreparedFrame*>& frames,
                                        const RenderOptions& options) {
     std::vector<RenderResult> results(frames.size());
+    if (options.profile == Profile::Softpipe) {
+        for (size_t f = 0; f < frames.size(); ++f) results[f] = RenderSoftpipe(*frames[f]);
+        return results;
+    }
     std::vector<FragmentTarget> targets;
     for (size_t f = 0; f < frames.size(); ++f) {
         const Frame& frame = frames[f]->frame();
@@ -338,6 +327,8 @@ std::vector<RenderResult> RenderFrames(const std::vector<const PreparedFrame*>& 
 
 RenderingMatrix BuildRenderingMatrix(const PreparedFrame& prepared, const RenderOptions& options) {
     const Frame& frame = prepared.frame();
+    if (options.profile == Profile::Softpipe)
+        throw std::invalid_argument("softpipe profile: the rendering matrix is not modelled yet");
     for (size_t i = 0; i < frame.passes.size(); ++i) {
         const Pass& p = frame.passes[i];
         if (p.blend.enabled && !(p.blend == BlendState::Additive()))

@@ -12,6 +12,8 @@
 //  - Linear: the same rasterization, texel selection and weights, but no intermediate rounding:
 //    float texels c/255, float filtering, float framebuffer and float blending; the result is
 //    exactly linear in the texels (ImageF), and Image8 is its RNE conversion.
+//  - Softpipe: Mesa 22.3.6 softpipe (softpipe_render.h), its own float setup, interpolation and
+//    blending; sampling is modelled for uniform textures only so far, depth not yet.
 // Depth (Frame::depth, Pass::depthTest): both profiles decide visibility with llvmpipe's depth
 // arithmetic (depth.h); a fragment that fails writes nothing and has no row entries in A.
 // Threads split the frame into bands of whole 2x2-quad rows; each pixel (colour and depth) is
@@ -28,7 +30,7 @@
 
 namespace pem::raster {
 
-enum class Profile { Llvmpipe, Linear };
+enum class Profile { Llvmpipe, Linear, Softpipe };
 enum class UnormRounding { HalfEven, HalfUp };  // RNE(f*255) (GL/llvmpipe) or D3D's floor(+0.5)
 enum class CubeLod { Llvmpipe, Exact };         // llvmpipe's fast log2 / GL-spec exact log2
 

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "raster/blend.h"
+#include "raster/clip.h"
 #include "raster/depth.h"
 #include "raster/fragment.h"
 #include "raster/numeric.h"
@@ -17,10 +18,6 @@
 
 namespace pem::raster::isa {
 namespace {
-
-int ColourOffset(const Pass& pass) {
-    return 3 * pass.numUnits;
-}
 
 // Per-lane attribute values of a 4x2 lane group (sampler.h's lane order), attribute-major so
 // the loops over lanes vectorise: the interpolated 1/w, one true division, each attribute
@@ -100,7 +97,7 @@ void ShadeGroup(const FragmentTarget& tg, const Pass& pass, const LaneAttribs& q
                          &(*footprints)[static_cast<size_t>(u)]);
     }
 
-    const int co = ColourOffset(pass);
+    const int co = PassColourAttrib(pass);
     const bool linear = tg.options.profile == Profile::Linear;
     for (int l = 0; l < kLanes; ++l) {
         if (!(mask & (1u << l))) continue;

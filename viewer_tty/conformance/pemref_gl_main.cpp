@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
-// pemref_gl_main.cpp — `pemref-gl CASE.json [-o out.png] [--repeat N] [--info] [--software]`:
-// renders a raster case through the system's OpenGL driver and prints `sha256: <hex>` of the
-// RGBA8 pixels (rows top-down), plus `frame_ms_median: <ms>` with --repeat.
+// pemref_gl_main.cpp — `pemref-gl CASE.json [-o out.png] [--repeat N] [--info]
+// [--driver llvmpipe|softpipe] [--software]`: renders a raster case through the system's OpenGL
+// driver (or Mesa's software driver named by --driver) and prints `sha256: <hex>` of the RGBA8
+// pixels (rows top-down), plus `frame_ms_median: <ms>` with --repeat.
 // Exit codes: 0 ok, 1 bad case or output path, 2 OpenGL unavailable, 3 GL driver failure.
 // Not here: pemref's own rasterizer (that is `pemref`).
 #include <CLI/CLI.hpp>
@@ -18,7 +19,7 @@
 namespace {
 
 struct Options {
-    std::string casePath, outPath;
+    std::string casePath, outPath, driver;
     int repeat = 0;
     bool info = false, software = false;
 };
@@ -33,9 +34,17 @@ int Run(const Options& options) {
     // Step 1: the case (before GL, so a bad case is reported even without a driver).
     const pem::raster::Frame frame = pem::conformance::LoadCaseFile(options.casePath);
     // Step 2: the GL context.
-    if (options.software) setenv("LIBGL_ALWAYS_SOFTWARE", "1", 1);
+    if (options.software || !options.driver.empty()) setenv("LIBGL_ALWAYS_SOFTWARE", "1", 1);
+    if (!options.driver.empty()) setenv("GALLIUM_DRIVER", options.driver.c_str(), 1);
     if (auto reason = pem::conformance::GlAvailable()) {
         std::cerr << "pemref-gl: OpenGL unavailable: " << *reason << "\n";
+        return 2;
+    }
+    if (!options.driver.empty() &&
+        pem::conformance::GlRendererString().find(options.driver) == std::string::npos) {
+        std::cerr << "pemref-gl: --driver " << options.driver
+                  << ": the GL renderer is not Mesa's: " << pem::conformance::GlRendererString()
+                  << "\n";
         return 2;
     }
     if (options.info) std::cerr << "GL: " << pem::conformance::GlRendererString() << "\n";
@@ -65,6 +74,10 @@ int main(int argc, char** argv) {
     app.add_flag("--info", options.info, "print GL_RENDERER and GL_VERSION to stderr");
     app.add_flag("--software", options.software,
                  "set LIBGL_ALWAYS_SOFTWARE=1 before EGL init (Mesa llvmpipe)");
+    app.add_option("--driver", options.driver,
+                   "Mesa's software driver: llvmpipe or softpipe (sets LIBGL_ALWAYS_SOFTWARE=1 "
+                   "and GALLIUM_DRIVER before EGL init)")
+        ->check(CLI::IsMember({"llvmpipe", "softpipe"}));
     CLI11_PARSE(app, argc, argv);
     try {
         return Run(options);
