@@ -228,8 +228,7 @@ StackedRows StackRows(const std::vector<MapInput>& inputs, int w, int h, int k, 
                       const InferJobOptions& opt) {
     StackedRows s;
     // The profile's texel selection with exact weights (its LOD rule, no rounding).
-    raster::RenderOptions ro = raster::ProfileNamed(opt.hardware.profile).options;
-    ro.profile = raster::Profile::Linear;
+    raster::RenderOptions ro = raster::ProfileNamed(opt.hardware.profile).matrix;
     ro.threads = opt.threads;
     for (size_t i = 0; i < inputs.size(); ++i) {
         raster::Frame f = UnknownFrame(k * w, k * h, res, opt.hardware.Sampler(), inputs[i]);
@@ -258,8 +257,7 @@ StackedRows StackRows(const std::vector<MapInput>& inputs, int w, int h, int k, 
 // shows "the most detailed EM MIPMAP level actually accessed by the graphics system".
 std::vector<double> LevelsAccessed(const std::vector<MapInput>& inputs, int w, int h, int k,
                                    int maxRes, const InferJobOptions& opt) {
-    raster::RenderOptions ro = raster::ProfileNamed(opt.hardware.profile).options;
-    ro.profile = raster::Profile::Linear;
+    raster::RenderOptions ro = raster::ProfileNamed(opt.hardware.profile).matrix;
     ro.threads = opt.threads;
     raster::SamplerState sampler = opt.hardware.Sampler();
     sampler.lodBias = 0.0f;

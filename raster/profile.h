@@ -6,7 +6,7 @@
 //
 // A profile is a set of RenderOptions: `llvmpipe` (Mesa 22.3.6 llvmpipe, bit for bit), `linear`
 // (the same texel selection and weights without rounding, a float framebuffer: the rendering
-// matrix's profile), `softpipe` (Mesa 22.3.6 softpipe, partial: softpipe_render.h), and the
+// matrix's profile), `softpipe` (Mesa 22.3.6 softpipe: softpipe_render.h), and the
 // variants `exact-lod` (GL-spec log2 for the cube LOD) and `d3d-rounding` (float → unorm8 by
 // floor(x + 0.5)), which span what conformant hardware may do. Not here: the rules themselves
 // (render.h and docs/raster-model.md).
@@ -20,12 +20,13 @@
 namespace pem::raster {
 
 struct ProfileInfo {
-    const char* name;   // as --profile takes it
-    const char* model;  // what it reproduces, with the version
-    RenderOptions options;
-    // Models only part of its driver so far and refuses the rest (std::invalid_argument); left
-    // out of what spans the golden images' bounds.
-    bool partial = false;
+    const char* name;       // as --profile takes it
+    const char* model;      // what it reproduces, with the version
+    RenderOptions options;  // how it renders
+    // How its rendering matrix is built (BuildRenderingMatrix): the texel selection and weights
+    // its frames are linear in. llvmpipe's: the linear profile with the same LOD rule; softpipe's:
+    // itself (float filtering).
+    RenderOptions matrix;
 };
 
 // Every profile, llvmpipe first.

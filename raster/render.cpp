@@ -327,8 +327,6 @@ std::vector<RenderResult> RenderFrames(const std::vector<const PreparedFrame*>& 
 
 RenderingMatrix BuildRenderingMatrix(const PreparedFrame& prepared, const RenderOptions& options) {
     const Frame& frame = prepared.frame();
-    if (options.profile == Profile::Softpipe)
-        throw std::invalid_argument("softpipe profile: the rendering matrix is not modelled yet");
     for (size_t i = 0; i < frame.passes.size(); ++i) {
         const Pass& p = frame.passes[i];
         if (p.blend.enabled && !(p.blend == BlendState::Additive()))
@@ -345,7 +343,10 @@ RenderingMatrix BuildRenderingMatrix(const PreparedFrame& prepared, const Render
         for (int c = 0; c < 4; ++c) m.offset[4 * i + c] = frame.clear[c] / 255.0;
     std::vector<std::vector<std::pair<uint32_t, double>>> rows(4 * n);
     std::vector<uint32_t> depth;
-    DrawFrame({&prepared, options, nullptr, nullptr, &m, &rows, ClearedDepth(frame, &depth)});
+    if (options.profile == Profile::Softpipe)
+        SoftpipeMatrixRows(prepared, &m, &rows);
+    else
+        DrawFrame({&prepared, options, nullptr, nullptr, &m, &rows, ClearedDepth(frame, &depth)});
 
     // Merge duplicate columns per row (sorted), then CSR; each row freed once copied.
     size_t taps = 0;

@@ -12,10 +12,11 @@
 //  - Linear: the same rasterization, texel selection and weights, but no intermediate rounding:
 //    float texels c/255, float filtering, float framebuffer and float blending; the result is
 //    exactly linear in the texels (ImageF), and Image8 is its RNE conversion.
-//  - Softpipe: Mesa 22.3.6 softpipe (softpipe_render.h), its own float setup, interpolation and
-//    blending; sampling is modelled for uniform textures only so far, depth not yet.
-// Depth (Frame::depth, Pass::depthTest): both profiles decide visibility with llvmpipe's depth
-// arithmetic (depth.h); a fragment that fails writes nothing and has no row entries in A.
+//  - Softpipe: bit-exact to Mesa 22.3.6 softpipe (softpipe_render.h): its own float setup,
+//    interpolation, sampler, depth test and blending; one thread.
+// Depth (Frame::depth, Pass::depthTest): Llvmpipe and Linear decide visibility with llvmpipe's
+// depth arithmetic (depth.h), Softpipe with softpipe's; a fragment that fails writes nothing and
+// has no row entries in A.
 // Threads split the frame into bands of whole 2x2-quad rows; each pixel (colour and depth) is
 // written by one thread in primitive order, so the bytes do not depend on the thread count.
 #pragma once
@@ -93,7 +94,8 @@ std::vector<RenderResult> RenderFrames(const std::vector<const PreparedFrame*>& 
 // (it adds to it); anything else throws std::invalid_argument. Depth tests are allowed: they
 // only choose which fragments count (fragments hidden by the depth buffer have no entries).
 // In the Linear profile `rendered` equals A * x + offset to float rounding; in the Llvmpipe
-// profile it is the 8-bit frame / 255, within the bound of docs/raster-model.md §9.
+// profile it is the 8-bit frame / 255, within the bound of docs/raster-model.md §9; in the
+// Softpipe profile the 8-bit frame / 255, A * x + offset rounded once (softpipe_render.h).
 struct RenderingMatrix {
     int64_t rows = 0, cols = 0;
     std::vector<int64_t> rowPtr;  // CSR, rows + 1 entries

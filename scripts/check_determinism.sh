@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # Builds pemref three ways (gcc -O0, gcc -O3, clang -O2) and checks that goldens come out the
 # same in each build, with 1 and 2 threads, and with the baseline fragment stage forced
-# (PEM_ISA=base): the whole conformance corpus and the benchmark frame (hashes), and the example
-# golden suite (raster cases, a traced and a static-EM scene: golden.json and every PNG, byte for
-# byte). Prints "determinism: N passed, M failed" (N: tests compared in every run).
+# (PEM_ISA=base): the whole conformance corpus and the benchmark frame (hashes; llvmpipe and
+# softpipe profiles), and the example golden suite (raster cases, a traced and a static-EM scene:
+# golden.json and every PNG, byte for byte). Prints "determinism: N passed, M failed" (N: tests compared in every run).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$(pwd)
@@ -37,6 +37,8 @@ for dir in "$out"/gcc-O0 "$out"/gcc-O3 "$out"/clang-O2; do
     threads=${variant#t}; threads=${threads%-base}
     PEM_ISA=$isa "$dir/bin/pemref" golden generate "$cases" --out "$g/corpus" --hashes-only \
       --threads "$threads" >/dev/null
+    PEM_ISA=$isa "$dir/bin/pemref" golden generate "$cases" --out "$g/corpus-softpipe" \
+      --hashes-only --profile softpipe --threads "$threads" >/dev/null
     PEM_ISA=$isa "$dir/bin/pemref" golden generate tests/data/golden_suite --out "$g/suite" \
       --threads "$threads" >/dev/null
     runs+=("$g")
@@ -50,7 +52,7 @@ runs = sys.argv[1:]
 def tests(run, part):
     return {t["name"]: t for t in json.load(open(os.path.join(run, part, "golden.json")))["tests"]}
 passed = failed = 0
-for part in ("corpus", "suite"):
+for part in ("corpus", "corpus-softpipe", "suite"):
     ref = tests(runs[0], part)
     for name, t in sorted(ref.items()):
         bad = []

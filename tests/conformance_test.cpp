@@ -3,10 +3,7 @@
 // must be byte-identical to the Mesa driver it models rendering the same case file through EGL,
 // and so must the depth buffer of a case that has one (read back with glReadPixels).
 //  - Conformance.*: the llvmpipe profile against llvmpipe (every case).
-//  - SoftpipeFlat.*: the softpipe profile against softpipe (GALLIUM_DRIVER=softpipe), on every
-//    case without a depth buffer with its textures made uniform (each texture one colour, no
-//    anisotropy): what the profile models so far — clipping, setup, scan conversion,
-//    interpolation, the fragment product, float blending and packing (softpipe_render.h).
+//  - Softpipe.*: the softpipe profile against softpipe (GALLIUM_DRIVER=softpipe), every case.
 // A process talks to one driver (EGL is initialised once), so CTest runs each test alone.
 // The case goes through its JSON form first (CaseToJson -> ParseCaseJson), so both renderers
 // see exactly what a case file carries. On a mismatch the case, both frames and a difference
@@ -19,7 +16,6 @@
 
 #include "base/png_io.h"
 #include "raster/render.h"
-#include "raster/softpipe_render.h"
 #include "tests/case_generator.h"
 #include "viewer_tty/conformance/case_file.h"
 #include "viewer_tty/conformance/gl_reference.h"
@@ -52,14 +48,16 @@ void WriteFailure(const std::string& name, const std::string& json, const raster
 
 // The depth buffers (depth.h values, rows top-down) must be equal too.
 void ExpectSameDepth(const std::string& name, const raster::Frame& frame,
-                     const std::vector<uint32_t>& ours, const std::vector<uint32_t>& gl) {
+                     const std::vector<uint32_t>& ours, const std::vector<uint32_t>& gl,
+                     const std::string& driver) {
     ASSERT_EQ(ours.size(), gl.size()) << name;
     size_t differ = 0, first = 0;
     for (size_t i = 0; i < ours.size(); ++i)
         if (ours[i] != gl[i] && differ++ == 0) first = i;
     EXPECT_EQ(differ, 0u) << name << ": " << differ << " depth values differ, first at x "
                           << first % size_t(frame.width) << ", row " << first / size_t(frame.width)
-                          << " (pemref " << ours[first] << ", llvmpipe " << gl[first] << ")";
+                          << " (pemref " << ours[first] << ", " << driver << " " << gl[first]
+                          << ")";
 }
 
 // The GL driver for this process: Mesa's `driver`, also on machines with a GPU.
@@ -83,7 +81,7 @@ void ExpectSameAsDriver(const std::string& name, const raster::Frame& original,
     std::vector<uint32_t> glDepth;
     const raster::Image8 gl = conformance::RenderWithGl(frame, 1, nullptr, &glDepth);
     ASSERT_EQ(ours.rgba.size(), gl.rgba.size());
-    ExpectSameDepth(name, frame, result.depth, glDepth);
+    ExpectSameDepth(name, frame, result.depth, glDepth, driver);
     size_t differ = 0, first = 0;
     int maxDelta = 0;
     for (size_t i = 0; i < ours.rgba.size(); ++i)
@@ -109,49 +107,19 @@ INSTANTIATE_TEST_SUITE_P(Cases, Conformance, ::testing::Range<size_t>(0, Cases()
                              return Cases()[p.param].name;
                          });
 
-// The corpus as the softpipe profile can draw it so far: each texture filled with one colour (a
-// different one per texture, so the fragment product is exercised), no anisotropy, geometry,
-// passes and blending unchanged; the cases the profile still refuses (depth buffers, texture
-// coordinates outside its range: SoftpipeUnsupported) left out, and counted below.
-const std::vector<NamedCase>& FlatCases() {
-    static const std::vector<NamedCase> cases = [] {
-        std::vector<NamedCase> flat;
-        for (const NamedCase& c : Cases()) {
-            NamedCase f = c;
-            for (size_t t = 0; t < f.frame.textures.size(); ++t) {
-                raster::Texture& tex = f.frame.textures[t];
-                const uint8_t colour[4] = {static_cast<uint8_t>(255 - 37 * t), 201, 77,
-                                           static_cast<uint8_t>(230 - 50 * t)};
-                for (std::vector<uint8_t>& level : tex.levels)
-                    for (size_t i = 0; i < level.size(); ++i) level[i] = colour[i % 4];
-                tex.sampler.maxAnisotropy = 1.0f;
-            }
-            if (!raster::SoftpipeUnsupported(f.frame)) flat.push_back(std::move(f));
-        }
-        return flat;
-    }();
-    return cases;
-}
+class Softpipe : public ::testing::TestWithParam<size_t> {};
 
-class SoftpipeFlat : public ::testing::TestWithParam<size_t> {};
-
-// The flat suite cannot shrink unnoticed: 222 of the 324 generated cases (64 have a depth
-// buffer; 38, the extreme_* and magnitude cases, coordinates beyond the profile's range).
-TEST(SoftpipeFlatSuite, CoversTheCorpusWithoutDepth) {
-    EXPECT_GE(FlatCases().size(), 222u);
-}
-
-TEST_P(SoftpipeFlat, BitIdenticalToSoftpipe) {
+TEST_P(Softpipe, BitIdenticalToSoftpipe) {
     UseDriver("softpipe");
-    const NamedCase& c = FlatCases()[GetParam()];
+    const NamedCase& c = Cases()[GetParam()];
     raster::RenderOptions options;
     options.profile = raster::Profile::Softpipe;
-    ExpectSameAsDriver(c.name + "_flat", c.frame, options, "softpipe");
+    ExpectSameAsDriver(c.name, c.frame, options, "softpipe");
 }
 
-INSTANTIATE_TEST_SUITE_P(Cases, SoftpipeFlat, ::testing::Range<size_t>(0, FlatCases().size()),
+INSTANTIATE_TEST_SUITE_P(Cases, Softpipe, ::testing::Range<size_t>(0, Cases().size()),
                          [](const ::testing::TestParamInfo<size_t>& p) {
-                             return FlatCases()[p.param].name;
+                             return Cases()[p.param].name;
                          });
 
 }  // namespace

@@ -13,6 +13,8 @@
 //    8-bit path: each row lerp and the column lerp round to 8 bits (<= 0.5 each, the column
 //    lerp carries the rows' error: <= 1.0), the MIP lerp adds 0.5 more: <= 1.5 on the texel
 //    value, times the modulating colour (<= 1 here), then the final RNE: <= 2.0 in all.
+//  - Softpipe profile: texels, filters, the tile cache between passes and blending are float,
+//    so the 8-bit frame is A x + offset rounded once (float_to_ubyte): within 0.5 + 1e-3.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -224,6 +226,24 @@ TEST(RenderingMatrix, LlvmpipeFrameWithinStatedBound) {
             if (y[i] > 1.0 - 1e-9 || !(y[i] >= 0.0)) continue;  // saturated, or NaN weights
             const double d = std::fabs(255.0 * a.rendered[i] - 255.0 * y[i]);
             ASSERT_LE(d, a.fragments[i / 4] * perPass + 1e-3) << c.name << " row " << i;
+        }
+        ++checked;
+    }
+    EXPECT_GT(checked, 40);
+}
+
+TEST(RenderingMatrix, SoftpipeFrameWithinOneRounding) {
+    RenderOptions opt;
+    opt.profile = Profile::Softpipe;
+    int checked = 0;
+    for (const NamedCase& c : LinearFrames()) {
+        const PreparedFrame pf(c.frame);
+        const RenderingMatrix a = BuildRenderingMatrix(pf, opt);
+        const std::vector<double> y = Apply(a, TexelVector(c.frame));
+        for (size_t i = 0; i < y.size(); ++i) {
+            if (y[i] > 1.0 - 1e-9 || !(y[i] >= 0.0)) continue;  // saturated, or NaN weights
+            ASSERT_LE(std::fabs(255.0 * a.rendered[i] - 255.0 * y[i]), 0.5 + 1e-3)
+                << c.name << " row " << i;
         }
         ++checked;
     }

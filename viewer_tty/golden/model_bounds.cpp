@@ -12,7 +12,6 @@ namespace pem::golden {
 ModelBounds BoundsOf(const GoldenTest& test, int threads) {
     ModelBounds b;
     for (const raster::ProfileInfo& p : raster::Profiles()) {
-        if (p.partial) continue;
         const base::Image8 img = RenderTest(test, p.name, threads).image;
         if (b.profiles.empty()) {
             b.width = img.width, b.height = img.height;
