@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
+#include <string>
 
 #include "raster/aniso.h"
 #include "raster/numeric.h"
@@ -405,6 +407,8 @@ void CubeFace(float rx, float ry, float rz, int* face, float* s, float* t) {
     }
 }
 
+constexpr int64_t kMaxEwaBox = int64_t{1} << 20;
+
 // img_filter_2d_ewa: Heckbert's elliptical weighted average at one level. The ellipse
 // A u^2 + B u v + C v^2 = F from the texel-space derivatives (scaled to the level), scaled so F
 // is 1023; every texel of its bounding box with q < 1024 (q stepped incrementally along the
@@ -440,6 +444,14 @@ std::array<RgbaF, 4> Ewa(const PreparedTexture& tex, int level, const std::array
         const float texV = -0.5f + t[j] * static_cast<float>(src.height) * scaling;
         const int u0 = TruncI32(std::floor(texU - boxU)), u1 = TruncI32(std::ceil(texU + boxU));
         const int v0 = TruncI32(std::floor(texV - boxV)), v1 = TruncI32(std::ceil(texV + boxV));
+        // softpipe would scan any box; a box of more texels than a frame could need (a LOD
+        // clamped far below the footprint) is refused rather than scanned for hours.
+        const int64_t boxTexels = (int64_t{u1} - u0 + 1) * (int64_t{v1} - v0 + 1);
+        if (boxTexels > kMaxEwaBox)
+            throw std::invalid_argument("softpipe profile: an anisotropic footprint of " +
+                                        std::to_string(boxTexels) + " texels at level " +
+                                        std::to_string(level) + " (more than " +
+                                        std::to_string(kMaxEwaBox) + ")");
         const float uStart = static_cast<float>(u0) - texU;
         RgbaF num = {0.0f, 0.0f, 0.0f, 0.0f};
         float den = 0.0f;

@@ -15,9 +15,13 @@
 //    other coordinate clamped first); non-seamless and nearest taps clamp to the edge.
 //  - 2D wrap modes as softpipe's wrap_* functions, power-of-two fast paths for repeat; a tap
 //    outside the level returns the border colour (0, 0, 0, 0).
+//  - Bilinear taps are read through softpipe's texture tile cache (16 direct-mapped 32x32
+//    tiles): a tap whose slot a later tap of the same filter refilled reads the later tile.
 //  - MIP: lambda <= 0 magnifies at level 0; nearest level trunc(lambda + 0.5); linear blends
 //    trunc(lambda) and the next level by lambda - floor(lambda); floats lerp as a + w * (b - a).
-// Not modelled: anisotropic filtering (softpipe's EWA filter); softpipe_render.h refuses it.
+//  - Anisotropy (max anisotropy >= 2 with LINEAR_MIPMAP_LINEAR): Heckbert's EWA at one level,
+//    weights from a table of glibc's expf (softpipe_tables.h). A footprint box of more than 2^20
+//    texels throws std::invalid_argument (softpipe would scan it).
 #pragma once
 
 #include <array>

@@ -84,8 +84,13 @@ int RunRaster(const RasterArgs& args) {
     const raster::PreparedFrame prepared(frame);
     const raster::RenderOptions options = ParseOptions(args);
 
-    // Render (timed when --repeat is given).
-    raster::RenderResult result = raster::Render(prepared, options);
+    // Render (timed when --repeat is given); a frame the profile refuses names the case.
+    raster::RenderResult result;
+    try {
+        result = raster::Render(prepared, options);
+    } catch (const std::invalid_argument& e) {
+        throw base::InputError(args.casePath, e.what());
+    }
     std::vector<double> ms;
     for (int i = 0; i < args.repeat; ++i) {
         const auto t0 = std::chrono::steady_clock::now();
