@@ -55,6 +55,7 @@ struct Target {
     // Matrix mode (BuildRenderingMatrix): the rows of A as the frame is drawn.
     RenderingMatrix* matrix = nullptr;
     SoftpipeRows* rows = nullptr;
+    SoftpipeBudget budget;
 };
 
 // C's (unsigned) and (ushort) casts of a float as gcc compiles them for x86-64: cvttss2si to
@@ -198,7 +199,7 @@ void ShadeQuad(const SpTriangle& t, const PreparedFrame& prepared, const Pass& p
     for (int u = 0; u < pass.numUnits; ++u) {
         const auto k = static_cast<size_t>(3 * u);
         SampleSoftpipeQuad(prepared.texture(pass.texture[static_cast<size_t>(u)]),
-                           {attr[k], attr[k + 1], attr[k + 2]}, &sample,
+                           {attr[k], attr[k + 1], attr[k + 2]}, &sample, &target->budget,
                            target->rows && u == 0 ? &taps : nullptr);
         for (size_t j = 0; j < 4; ++j)
             for (size_t c = 0; c < 4; ++c) {
@@ -273,7 +274,7 @@ Target DrawFrame(const PreparedFrame& prepared, RenderingMatrix* matrix, Softpip
     const Frame& frame = prepared.frame();
     ScopedFlushToZero ftz;
     const size_t n = static_cast<size_t>(frame.width) * static_cast<size_t>(frame.height);
-    Target target{frame.width, frame.height, std::vector<float>(4 * n), 0, {}, matrix, rows};
+    Target target{frame.width, frame.height, std::vector<float>(4 * n), 0, {}, matrix, rows, {}};
     for (size_t i = 0; i < n; ++i)
         for (size_t c = 0; c < 4; ++c)
             target.colour[4 * i + c] = static_cast<float>(frame.clear[c]) / 255.0f;

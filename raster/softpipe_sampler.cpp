@@ -407,8 +407,6 @@ void CubeFace(float rx, float ry, float rz, int* face, float* s, float* t) {
     }
 }
 
-constexpr int64_t kMaxEwaBox = int64_t{1} << 20;
-
 // img_filter_2d_ewa: Heckbert's elliptical weighted average at one level. The ellipse
 // A u^2 + B u v + C v^2 = F from the texel-space derivatives (scaled to the level), scaled so F
 // is 1023; every texel of its bounding box with q < 1024 (q stepped incrementally along the
@@ -417,7 +415,7 @@ constexpr int64_t kMaxEwaBox = int64_t{1} << 20;
 std::array<RgbaF, 4> Ewa(const PreparedTexture& tex, int level, const std::array<float, 4>& s,
                          const std::array<float, 4>& t, const std::array<int, 4>& face, float dudx,
                          float dvdx, float dudy, float dvdy,
-                         std::array<std::vector<SoftpipeTap>, 4>* taps) {
+                         std::array<std::vector<SoftpipeTap>, 4>* taps, SoftpipeBudget* budget) {
     const Texture& src = *tex.source;
     // Step 1: the ellipse at the level, its bounding box and the scaled form.
     const float scaling = 1.0f / static_cast<float>(1 << level);
@@ -444,14 +442,15 @@ std::array<RgbaF, 4> Ewa(const PreparedTexture& tex, int level, const std::array
         const float texV = -0.5f + t[j] * static_cast<float>(src.height) * scaling;
         const int u0 = TruncI32(std::floor(texU - boxU)), u1 = TruncI32(std::ceil(texU + boxU));
         const int v0 = TruncI32(std::floor(texV - boxV)), v1 = TruncI32(std::ceil(texV + boxV));
-        // softpipe would scan any box; a box of more texels than a frame could need (a LOD
-        // clamped far below the footprint) is refused rather than scanned for hours.
+        // softpipe scans any box; pemref stops when a frame's boxes exceed its budget.
         const int64_t boxTexels = (int64_t{u1} - u0 + 1) * (int64_t{v1} - v0 + 1);
-        if (boxTexels > kMaxEwaBox)
-            throw std::invalid_argument("softpipe profile: an anisotropic footprint of " +
-                                        std::to_string(boxTexels) + " texels at level " +
-                                        std::to_string(level) + " (more than " +
-                                        std::to_string(kMaxEwaBox) + ")");
+        budget->ewaTexels -= boxTexels;
+        if (budget->ewaTexels < 0)
+            throw std::invalid_argument(
+                "softpipe profile: the frame's anisotropic footprints exceed " +
+                std::to_string(SoftpipeBudget::kEwaTexels) + " texels (one of " +
+                std::to_string(boxTexels) + " at level " + std::to_string(level) +
+                "): a LOD clamped far below the footprint");
         const float uStart = static_cast<float>(u0) - texU;
         RgbaF num = {0.0f, 0.0f, 0.0f, 0.0f};
         float den = 0.0f;
@@ -490,7 +489,8 @@ std::array<RgbaF, 4> Ewa(const PreparedTexture& tex, int level, const std::array
 // the last level the last level's nearest texel.
 std::array<RgbaF, 4> SampleAniso(const PreparedTexture& tex, const std::array<float, 4>& s,
                                  const std::array<float, 4>& t, const std::array<int, 4>& face,
-                                 std::array<std::vector<SoftpipeTap>, 4>* taps) {
+                                 std::array<std::vector<SoftpipeTap>, 4>* taps,
+                                 SoftpipeBudget* budget) {
     const Texture& src = *tex.source;
     constexpr size_t kTL = 0, kBL = 2, kBR = 3;
     // Step 1: texel-space derivatives and the minor axis.
@@ -507,7 +507,7 @@ std::array<RgbaF, 4> SampleAniso(const PreparedTexture& tex, const std::array<fl
     const float lambda = 0.5f * SoftpipeFastLog2(pmin2) + tex.lod.lodBias;
     const int level = TruncI32(Clamp(lambda, tex.lod.minLod, tex.lod.maxLod));
     const int last = src.NumLevels() - 1;
-    if (level < last) return Ewa(tex, level, s, t, face, dudx, dvdx, dudy, dvdy, taps);
+    if (level < last) return Ewa(tex, level, s, t, face, dudx, dvdx, dudy, dvdy, taps, budget);
     std::array<RgbaF, 4> out;
     for (size_t j = 0; j < 4; ++j)
         out[j] = ImageFilter(tex, Filter::Nearest, last, face[j], s[j], t[j],
@@ -533,7 +533,7 @@ int32_t SoftpipeIfloor(float x) {
 }
 
 void SampleSoftpipeQuad(const PreparedTexture& texture, const QuadCoords& q,
-                        std::array<RgbaF, 4>* colour,
+                        std::array<RgbaF, 4>* colour, SoftpipeBudget* budget,
                         std::array<std::vector<SoftpipeTap>, 4>* taps) {
     const SamplerState& st = texture.source->sampler;
     const float lod = QuadLod(texture, q);
@@ -546,7 +546,7 @@ void SampleSoftpipeQuad(const PreparedTexture& texture, const QuadCoords& q,
     if (taps)
         for (std::vector<SoftpipeTap>& v : *taps) v.clear();
     if (st.mipFilter == MipFilter::Linear && PipeMaxAnisotropy(st.maxAnisotropy) > 1) {
-        *colour = SampleAniso(texture, s, t, face, taps);
+        *colour = SampleAniso(texture, s, t, face, taps, budget);
         return;
     }
     for (size_t j = 0; j < 4; ++j)

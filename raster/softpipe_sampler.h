@@ -20,11 +20,12 @@
 //  - MIP: lambda <= 0 magnifies at level 0; nearest level trunc(lambda + 0.5); linear blends
 //    trunc(lambda) and the next level by lambda - floor(lambda); floats lerp as a + w * (b - a).
 //  - Anisotropy (max anisotropy >= 2 with LINEAR_MIPMAP_LINEAR): Heckbert's EWA at one level,
-//    weights from a table of glibc's expf (softpipe_tables.h). A footprint box of more than 2^20
-//    texels throws std::invalid_argument (softpipe would scan it).
+//    weights from a table of glibc's expf (softpipe_tables.h). A frame whose footprint boxes
+//    hold more than 2^31 texels in all throws std::invalid_argument (softpipe would scan them).
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <vector>
 
 #include "raster/blend.h"
@@ -44,9 +45,17 @@ struct SoftpipeTap {
     double weight;          // the filters' weights multiplied out in double
 };
 
-// The quad's four samples; with `taps`, also the texels each one read (matrix mode).
+// What a frame may still spend: the texels of its EWA bounding boxes (softpipe scans any box;
+// a LOD clamped far below a footprint to the horizon can ask for billions per pixel).
+struct SoftpipeBudget {
+    static constexpr int64_t kEwaTexels = int64_t{1} << 31;
+    int64_t ewaTexels = kEwaTexels;
+};
+
+// The quad's four samples; with `taps`, also the texels each one read (matrix mode). Throws
+// std::invalid_argument when the frame's budget runs out.
 void SampleSoftpipeQuad(const PreparedTexture& texture, const QuadCoords& coords,
-                        std::array<RgbaF, 4>* colour,
+                        std::array<RgbaF, 4>* colour, SoftpipeBudget* budget,
                         std::array<std::vector<SoftpipeTap>, 4>* taps = nullptr);
 
 // softpipe's util_fast_log2: exponent plus a table of log2(1 + i / 256), i the mantissa's top

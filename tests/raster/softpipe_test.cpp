@@ -4,10 +4,11 @@
 //  - the tables softpipe builds with libm at start-up equal this machine's glibc (Debian 12, as
 //    the driver they model): log2(1 + i/256) and expf(-2 i/1023);
 //  - util_fast_log2 within its table's step of log2, util_ifloor equal to floor where exact;
-//  - an anisotropic footprint no frame could need is refused with std::invalid_argument.
+//  - EWA boxes are paid from the frame's budget; running out throws std::invalid_argument.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <memory>
 #include <stdexcept>
 
 #include "raster/render.h"
@@ -36,19 +37,31 @@ TEST(SoftpipeNumeric, FastLog2AndIfloor) {
     EXPECT_EQ(SoftpipeIfloor(2.0f), 2);
 }
 
-// The anisotropic ground plane with its LOD clamped to level 0 and its coordinates stretched
-// 30 times: footprints of millions of texels per pixel, which softpipe would scan for minutes.
-TEST(SoftpipeAniso, RefusesFootprintsNoFrameNeeds) {
-    Frame frame;
-    for (test::NamedCase& c : test::ConformanceCases())
-        if (c.name == "aniso_lod_max_lod_1") frame = std::move(c.frame);
-    ASSERT_FALSE(frame.passes.empty());
-    frame.textures[0].sampler.maxLod = 0.0f;
-    for (Vertex& v : frame.passes[0].vertices)
-        for (int k = 0; k < 2; ++k) v.coord[0][k] *= 30.0f;
-    RenderOptions softpipe;
-    softpipe.profile = Profile::Softpipe;
-    EXPECT_THROW(Render(PreparedFrame(frame), softpipe), std::invalid_argument);
+// A quad on a 64x64 anisotropic texture whose coordinates step 50 texels per pixel both ways
+// with the LOD clamped to level 0: each pixel's EWA box holds ~40000 texels. A budget of 10^5
+// texels pays for two pixels and stops at the third (a frame's budget is SoftpipeBudget's).
+TEST(SoftpipeAniso, StopsWhenTheFrameBudgetRunsOut) {
+    Texture tex;
+    tex.kind = TextureKind::Tex2D;
+    tex.width = tex.height = 64;
+    for (int l = 0, n = 64; n >= 1; ++l, n /= 2)
+        tex.levels.push_back(std::vector<uint8_t>(4 * static_cast<size_t>(n * n), 128));
+    tex.sampler.minFilter = Filter::Linear;
+    tex.sampler.mipFilter = MipFilter::Linear;
+    tex.sampler.maxAnisotropy = 16.0f;
+    tex.sampler.maxLod = 0.0f;
+    const std::shared_ptr<const PreparedTexture> prepared = PrepareTexture(tex);
+    const float d = 50.0f / 64.0f;  // 50 texels in s and t per pixel
+    const QuadCoords q{{0.5f, 0.5f + d, 0.5f, 0.5f + d}, {0.5f + d, 0.5f + d, 0.5f, 0.5f}, {}};
+    std::array<RgbaF, 4> colour;
+    SoftpipeBudget plenty;
+    SampleSoftpipeQuad(*prepared, q, &colour, &plenty);
+    EXPECT_NEAR(colour[0][0], 128.0f / 255.0f, 1e-5f);  // a uniform texture, float sums
+    const int64_t perPixel = (SoftpipeBudget::kEwaTexels - plenty.ewaTexels) / 4;
+    EXPECT_GT(perPixel, 10000);
+    SoftpipeBudget small{};
+    small.ewaTexels = 2 * perPixel + perPixel / 2;
+    EXPECT_THROW(SampleSoftpipeQuad(*prepared, q, &colour, &small), std::invalid_argument);
 }
 
 }  // namespace
