@@ -61,9 +61,7 @@ def main():
           f"and logs included); memory bandwidth {bw / 1e9:.1f} GB/s (copy), A streams once in "
           f"{1e3 * stream:.2f} ms: ratio {stats([p / stream for p in per_it])}")
     # (c) time to pemref's objective: pemref vs scipy lsmr on the exported system.
-    name = f"v000_g{m['group']}_{m['term']}_layer_{m['layer']}"
-    if m["term"] == "pem":
-        name = f"v000_g{m['group']}_{'pem_local' if m['layer'] == 0 else 'pem_distant'}"
+    name = f"v000_g{m['group']}_{m['name']}"  # as pemref infer --export-system names it
     base = os.path.join(tmp, "sys", name)
     meta = json.load(open(base + ".json"))
     k = scipy.sparse.csr_matrix(scipy.io.mmread(base + "_K.mtx"))

@@ -7,7 +7,7 @@
 # Frames are timed without parsing, texel generation or texture upload. Rounds alternate the two
 # renderers of a pair so a busy neighbour slows both; the script prints per-renderer median and
 # spread (min..max of the round medians) and the ratio of medians.
-#   usage: bench/raster_bench.sh [build-dir] [rounds]
+#   usage: bench/raster_bench.sh [build-dir] [rounds]   (PAIRS="llvmpipe softpipe" by default)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${1:-build}; rounds=${2:-7}; threads=${THREADS:-2}
@@ -39,5 +39,9 @@ print(f"ratio pemref/{drv}: {mo / mg:.2f}")
 PY
 }
 
-pair llvmpipe "$threads" llvmpipe llvmpipe
-pair softpipe 1 softpipe softpipe
+for p in ${PAIRS:-llvmpipe softpipe}; do
+  case $p in
+    llvmpipe) pair llvmpipe "$threads" llvmpipe llvmpipe ;;
+    softpipe) pair softpipe 1 softpipe softpipe ;;
+  esac
+done
