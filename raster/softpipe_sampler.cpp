@@ -443,7 +443,12 @@ std::array<RgbaF, 4> Ewa(const PreparedTexture& tex, int level, const std::array
         const int u0 = TruncI32(std::floor(texU - boxU)), u1 = TruncI32(std::ceil(texU + boxU));
         const int v0 = TruncI32(std::floor(texV - boxV)), v1 = TruncI32(std::ceil(texV + boxV));
         // softpipe scans any box; pemref stops when a frame's boxes exceed its budget.
-        const int64_t boxTexels = (int64_t{u1} - u0 + 1) * (int64_t{v1} - v0 + 1);
+        // (Sides are below 2^33, empty when the bounds cross; a side beyond the budget ends it,
+        // so the product never overflows.)
+        const int64_t su = std::max(int64_t{0}, int64_t{u1} - u0 + 1);
+        const int64_t sv = std::max(int64_t{0}, int64_t{v1} - v0 + 1);
+        const int64_t boxTexels =
+            std::max(su, sv) > SoftpipeBudget::kEwaTexels ? std::max(su, sv) : su * sv;
         budget->ewaTexels -= boxTexels;
         if (budget->ewaTexels < 0)
             throw std::invalid_argument(
