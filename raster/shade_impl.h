@@ -13,6 +13,7 @@
 #include "raster/clip.h"
 #include "raster/depth.h"
 #include "raster/fragment.h"
+#include "raster/matrix_rows.h"
 #include "raster/numeric.h"
 #include "raster/sampler_impl.h"
 
@@ -120,26 +121,13 @@ void ShadeGroup(const FragmentTarget& tg, const Pass& pass, const LaneAttribs& q
         }
 
         if (wantTaps) {
-            // Matrix rows: blend none replaces, add accumulates (checked by the caller).
-            uint16_t& frags = tg.matrix->fragments[pixel];
-            frags = pass.blend.enabled ? static_cast<uint16_t>(frags + 1) : 1;
-            for (int c = 0; c < 4; ++c) {
-                auto& row = (*tg.rows)[4 * pixel + static_cast<size_t>(c)];
-                double& off = tg.matrix->offset[4 * pixel + static_cast<size_t>(c)];
-                if (!pass.blend.enabled) {
-                    row.clear();
-                    off = 0.0;
-                }
-                if (pass.numUnits == 0) {
-                    off += static_cast<double>(src[c]);
-                    continue;
-                }
-                const PixelTaps& lane = taps[static_cast<size_t>(l)];
+            const PixelTaps& lane = taps[static_cast<size_t>(l)];
+            AddFragmentRows(tg.matrix, tg.rows, pixel, pass, src, [&](auto& row, int c) {
                 for (int k = 0; k < lane.Count(); ++k)
                     row.push_back(
                         {4 * lane.At(k).texel + static_cast<uint32_t>(c),
                          static_cast<double>(lane.At(k).weight) * static_cast<double>(mod[c])});
-            }
+            });
             continue;
         }
         if (linear) {

@@ -11,6 +11,7 @@
 #include "raster/clip.h"
 #include "raster/depth.h"
 #include "raster/float_mode.h"
+#include "raster/matrix_rows.h"
 #include "raster/numeric.h"
 #include "raster/softpipe_sampler.h"
 #include "raster/softpipe_setup.h"
@@ -54,7 +55,7 @@ struct Target {
     std::vector<uint32_t> depth;  // the depth tile's words (Z16, Z24X8 or Z32F bits); empty: none
     // Matrix mode (BuildRenderingMatrix): the rows of A as the frame is drawn.
     RenderingMatrix* matrix = nullptr;
-    SoftpipeRows* rows = nullptr;
+    MatrixRows* rows = nullptr;
     SoftpipeBudget budget;
 };
 
@@ -143,8 +144,7 @@ unsigned DepthFallback(const SpTriangle& t, DepthFormat format, const DepthTest&
     return out;
 }
 
-// Matrix mode: pixel (x, y)'s rows. Unblended passes replace the row, "add" passes add to it
-// (BuildRenderingMatrix checks); an untextured fragment adds its colour to the offset.
+// Matrix mode: pixel (x, y)'s rows (matrix_rows.h), unit 0's texels times what multiplies them.
 void AddRows(const PreparedFrame& prepared, const Pass& pass, int x, int y,
              const std::vector<SoftpipeTap>& taps, const RgbaF& colour, const RgbaF& mod,
              Target* target) {
@@ -152,25 +152,13 @@ void AddRows(const PreparedFrame& prepared, const Pass& pass, int x, int y,
     const size_t pixel =
         static_cast<size_t>(frame.height - 1 - y) * static_cast<size_t>(frame.width) +
         static_cast<size_t>(x);
-    uint16_t& frags = target->matrix->fragments[pixel];
-    frags = pass.blend.enabled ? static_cast<uint16_t>(frags + 1) : 1;
-    for (size_t c = 0; c < 4; ++c) {
-        auto& row = (*target->rows)[4 * pixel + c];
-        double& off = target->matrix->offset[4 * pixel + c];
-        if (!pass.blend.enabled) {
-            row.clear();
-            off = 0.0;
-        }
-        if (pass.numUnits == 0) {
-            off += static_cast<double>(colour[c]);
-            continue;
-        }
+    AddFragmentRows(target->matrix, target->rows, pixel, pass, colour, [&](auto& row, int c) {
         for (const SoftpipeTap& t : taps)
             row.push_back(
                 {4 * prepared.indexer().Index(pass.texture[0], t.level, t.face, t.x, t.y) +
                      static_cast<uint32_t>(c),
-                 t.weight * static_cast<double>(mod[c])});
-    }
+                 t.weight * static_cast<double>(mod[static_cast<size_t>(c)])});
+    });
 }
 
 // One quad: interpolation at its four pixels, the texture units (one LOD per quad), the
@@ -270,7 +258,7 @@ void DrawPass(const PreparedFrame& prepared, const Pass& pass, Target* target) {
 
 // The cleared buffers (the tile caches cleared to glClearColor(c / 255.0f) and util_pack_z's
 // depth), then the passes in order, with denormals flushed (draw_vbo).
-Target DrawFrame(const PreparedFrame& prepared, RenderingMatrix* matrix, SoftpipeRows* rows) {
+Target DrawFrame(const PreparedFrame& prepared, RenderingMatrix* matrix, MatrixRows* rows) {
     const Frame& frame = prepared.frame();
     ScopedFlushToZero ftz;
     const size_t n = static_cast<size_t>(frame.width) * static_cast<size_t>(frame.height);
@@ -297,7 +285,7 @@ uint8_t SoftpipeUbyte(float x) {
     return static_cast<uint8_t>(FloatBits(biased) & 255u);
 }
 
-void SoftpipeMatrixRows(const PreparedFrame& frame, RenderingMatrix* matrix, SoftpipeRows* rows) {
+void SoftpipeMatrixRows(const PreparedFrame& frame, RenderingMatrix* matrix, MatrixRows* rows) {
     DrawFrame(frame, matrix, rows);
 }
 
