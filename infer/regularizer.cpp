@@ -3,6 +3,8 @@
 #include "infer/regularizer.h"
 
 #include <algorithm>
+#include <array>
+#include <span>
 #include <stdexcept>
 
 namespace pem::infer {
@@ -41,13 +43,21 @@ FaceTexel CrossSeam(int face, Edge e, int i, int j, int m) {
     }
 }
 
-// One row per channel: sum_k coef[k] * x(texel[k]).
-void AddChannelRows(const std::vector<uint32_t>& texels, const std::vector<double>& coef,
-                    CsrMatrix* m) {
-    std::vector<uint32_t> cols(texels.size());
+// One row per channel: sum_k coef[k] * x(texel[k]) (at most kMaxRowTexels texels; no
+// allocation per row: the regularizers have millions of them).
+constexpr size_t kMaxRowTexels = 5;
+
+// The coefficients of the three kinds of row: a neighbour difference, a level minus the mean
+// of its four children, a texel.
+constexpr std::array kDifference{1.0, -1.0};
+constexpr std::array kPyramid{1.0, -0.25, -0.25, -0.25, -0.25};
+constexpr std::array kValue{1.0};
+
+void AddChannelRows(std::span<const uint32_t> texels, std::span<const double> coef, CsrMatrix* m) {
+    std::array<uint32_t, kMaxRowTexels> cols{};
     for (uint32_t c = 0; c < kChannels; ++c) {
         for (size_t k = 0; k < texels.size(); ++k) cols[k] = kChannels * texels[k] + c;
-        m->AddRow(cols, coef);
+        m->AddRow(std::span<const uint32_t>(cols.data(), texels.size()), coef);
     }
 }
 
@@ -60,15 +70,15 @@ CsrMatrix EmptyRows(const CubeLayout& layout, int64_t cols) {
 }
 
 // Active-set versions: one row per channel over compact columns, when every texel is active.
-bool AddActiveRows(const std::vector<uint32_t>& texels, const std::vector<double>& coef,
+bool AddActiveRows(std::span<const uint32_t> texels, std::span<const double> coef,
                    const std::vector<int32_t>& index, CsrMatrix* m) {
-    std::vector<uint32_t> compact(texels.size());
+    std::array<uint32_t, kMaxRowTexels> compact{};
     for (size_t k = 0; k < texels.size(); ++k) {
         const int32_t t = index[texels[k]];
         if (t < 0) return false;
         compact[k] = static_cast<uint32_t>(t);
     }
-    AddChannelRows(compact, coef, m);
+    AddChannelRows(std::span<const uint32_t>(compact.data(), texels.size()), coef, m);
     return true;
 }
 
@@ -121,7 +131,7 @@ CsrMatrix SmoothnessRows(const CubeLayout& layout, int64_t cols) {
     CsrMatrix m = EmptyRows(layout, cols);
     for (int l = 0; l < layout.levels; ++l)
         for (const auto& [a, b] : NeighbourPairs(layout, l))
-            AddChannelRows({a, b}, {1.0, -1.0}, &m);
+            AddChannelRows(std::array{a, b}, kDifference, &m);
     return m;
 }
 
@@ -133,11 +143,12 @@ CsrMatrix PyramidRows(const CubeLayout& layout, int64_t cols) {
         for (int f = 0; f < 6; ++f)
             for (int j = 0; j < n; ++j)
                 for (int i = 0; i < n; ++i)
-                    AddChannelRows({layout.Texel(l, f, i, j), layout.Texel(l - 1, f, 2 * i, 2 * j),
-                                    layout.Texel(l - 1, f, 2 * i + 1, 2 * j),
-                                    layout.Texel(l - 1, f, 2 * i, 2 * j + 1),
-                                    layout.Texel(l - 1, f, 2 * i + 1, 2 * j + 1)},
-                                   {1.0, -0.25, -0.25, -0.25, -0.25}, &m);
+                    AddChannelRows(
+                        std::array{layout.Texel(l, f, i, j), layout.Texel(l - 1, f, 2 * i, 2 * j),
+                                   layout.Texel(l - 1, f, 2 * i + 1, 2 * j),
+                                   layout.Texel(l - 1, f, 2 * i, 2 * j + 1),
+                                   layout.Texel(l - 1, f, 2 * i + 1, 2 * j + 1)},
+                        kPyramid, &m);
     }
     return m;
 }
@@ -145,7 +156,7 @@ CsrMatrix PyramidRows(const CubeLayout& layout, int64_t cols) {
 CsrMatrix PriorRows(const CubeLayout& layout, int64_t cols) {
     CsrMatrix m = EmptyRows(layout, cols);
     const uint32_t end = layout.firstTexel + static_cast<uint32_t>(layout.TexelCount());
-    for (uint32_t t = layout.firstTexel; t < end; ++t) AddChannelRows({t}, {1.0}, &m);
+    for (uint32_t t = layout.firstTexel; t < end; ++t) AddChannelRows(std::array{t}, kValue, &m);
     return m;
 }
 
@@ -175,7 +186,7 @@ CsrMatrix SmoothnessRows(const CubeLayout& layout, const std::vector<uint32_t>& 
         }
         std::sort(pairs.begin(), pairs.end());
         pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
-        for (const auto& [a, b] : pairs) AddActiveRows({a, b}, {1.0, -1.0}, index, &m);
+        for (const auto& [a, b] : pairs) AddActiveRows(std::array{a, b}, kDifference, index, &m);
     }
     return m;
 }
@@ -191,11 +202,12 @@ CsrMatrix PyramidRows(const CubeLayout& layout, const std::vector<uint32_t>& act
             for (int j = 0; j < n; ++j)
                 for (int i = 0; i < n; ++i) {
                     if (index[local.Texel(l, f, i, j)] < 0) continue;
-                    AddActiveRows({local.Texel(l, f, i, j), local.Texel(l - 1, f, 2 * i, 2 * j),
+                    AddActiveRows(
+                        std::array{local.Texel(l, f, i, j), local.Texel(l - 1, f, 2 * i, 2 * j),
                                    local.Texel(l - 1, f, 2 * i + 1, 2 * j),
                                    local.Texel(l - 1, f, 2 * i, 2 * j + 1),
                                    local.Texel(l - 1, f, 2 * i + 1, 2 * j + 1)},
-                                  {1.0, -0.25, -0.25, -0.25, -0.25}, index, &m);
+                        kPyramid, index, &m);
                 }
     }
     return m;
@@ -204,7 +216,7 @@ CsrMatrix PyramidRows(const CubeLayout& layout, const std::vector<uint32_t>& act
 CsrMatrix PriorRows(const CubeLayout& /*layout*/, const std::vector<uint32_t>& active,
                     const std::vector<int32_t>& index) {
     CsrMatrix m = ActiveEmpty(active);
-    for (uint32_t t : active) AddActiveRows({t}, {1.0}, index, &m);
+    for (uint32_t t : active) AddActiveRows(std::array{t}, kValue, index, &m);
     return m;
 }
 

@@ -36,7 +36,7 @@ struct Scaling {
 
 Scaling ColumnScaling(const LinearSystem& sys, double floorRel, int threads) {
     Scaling s;
-    s.columnNorm2 = ColumnSquaredNorms(sys.k.At(), threads);
+    s.columnNorm2 = sys.k.ColumnSquaredNorms(threads);
     // Floor: floorRel x the median of the non-zero squared norms.
     Vector positive;
     for (double v : s.columnNorm2)

@@ -8,7 +8,7 @@
 
 namespace pem::infer {
 
-void CsrMatrix::AddRow(const std::vector<uint32_t>& rowCols, const std::vector<double>& rowVals) {
+void CsrMatrix::AddRow(std::span<const uint32_t> rowCols, std::span<const double> rowVals) {
     col.insert(col.end(), rowCols.begin(), rowCols.end());
     val.insert(val.end(), rowVals.begin(), rowVals.end());
     rowPtr.push_back(static_cast<int64_t>(val.size()));
@@ -194,9 +194,22 @@ void MultiplyQuads(const CsrMatrix& q, const Vector& x, Vector* y, int threads) 
     });
 }
 
-SparseOperator::SparseOperator(CsrMatrix a) : a_(std::move(a)), at_(Transpose(a_)) {
+SparseOperator::SparseOperator(CsrMatrix a) : a_(std::move(a)) {
     quad_ = QuadForm(a_, &q_);
-    if (quad_) qt_ = Transpose(q_);
+    if (quad_)
+        qt_ = Transpose(q_);
+    else
+        at_ = Transpose(a_);
+}
+
+Vector SparseOperator::ColumnSquaredNorms(int threads) const {
+    if (!quad_) return infer::ColumnSquaredNorms(at_, threads);
+    // Column 4t + c of A holds quad column t's values in the same row order, for every c.
+    const Vector quad = infer::ColumnSquaredNorms(qt_, threads);
+    Vector out(kChannels * quad.size());
+    for (size_t t = 0; t < quad.size(); ++t)
+        for (size_t c = 0; c < kChannels; ++c) out[kChannels * t + c] = quad[t];
+    return out;
 }
 
 }  // namespace pem::infer

@@ -19,6 +19,7 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "infer/vector_ops.h"
@@ -34,7 +35,7 @@ struct CsrMatrix {
 
     int64_t NonZeros() const { return static_cast<int64_t>(val.size()); }
     // Appends one row (entries in the given order).
-    void AddRow(const std::vector<uint32_t>& rowCols, const std::vector<double>& rowVals);
+    void AddRow(std::span<const uint32_t> rowCols, std::span<const double> rowVals);
 };
 
 // The matrix part of raster's RenderingMatrix (offset and rendered are not copied).
@@ -73,13 +74,16 @@ bool QuadForm(const CsrMatrix& a, CsrMatrix* quads);
 // y = A x for A in quad form (x and y interleaved by channel, 4 entries per column / row).
 void MultiplyQuads(const CsrMatrix& quads, const Vector& x, Vector* y, int threads);
 
-// A matrix with its transpose (and their quad forms when A has one), for the solvers.
+// A matrix with its transpose, for the solvers: in quad form when A has one (then only the
+// quad forms of A and A^T are kept besides A: the full transpose is never formed), else in CSR.
 class SparseOperator {
   public:
     SparseOperator() = default;
     explicit SparseOperator(CsrMatrix a);
     const CsrMatrix& A() const { return a_; }
-    const CsrMatrix& At() const { return at_; }
+    // Squared Euclidean norm of every column of A, summed over the rows in increasing order
+    // (the same bits from the quad form as from the full transpose).
+    Vector ColumnSquaredNorms(int threads) const;
     int64_t Rows() const { return a_.rows; }
     int64_t Cols() const { return a_.cols; }
     bool HasQuadForm() const { return quad_; }
@@ -99,7 +103,7 @@ class SparseOperator {
     }
 
   private:
-    CsrMatrix a_, at_;
+    CsrMatrix a_, at_;  // at_: A^T, formed only without a quad form
     bool quad_ = false;
     CsrMatrix q_, qt_;  // quad forms of A and A^T
 };

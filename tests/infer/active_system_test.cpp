@@ -236,9 +236,13 @@ TEST(ActiveSystem, FusedLsmrAgreesWithDirectAndThreads) {
     sys.k.Apply(x, &y1, 2);
     Multiply(sys.k.A(), x, &y2, 1);
     sys.k.ApplyTranspose(r, &g1, 2);
-    Multiply(sys.k.At(), r, &g2, 1);
+    Multiply(Transpose(sys.k.A()), r, &g2, 1);
     EXPECT_EQ(std::memcmp(y1.data(), y2.data(), y1.size() * sizeof(double)), 0);
     EXPECT_EQ(std::memcmp(g1.data(), g2.data(), g1.size() * sizeof(double)), 0);
+    // So are the column norms from the quad form (no full transpose is kept).
+    const Vector n1 = sys.k.ColumnSquaredNorms(2), n2 = ColumnSquaredNorms(Transpose(sys.k.A()), 1);
+    ASSERT_EQ(n1.size(), n2.size());
+    EXPECT_EQ(std::memcmp(n1.data(), n2.data(), n1.size() * sizeof(double)), 0);
     // Unbounded LSMR to a tight tolerance vs the direct oracle.
     SolveOptions opt;
     opt.bounds = Bounds::None();

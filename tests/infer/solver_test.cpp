@@ -132,7 +132,7 @@ TEST(Solver, HdrRecoveryOnWellObservedTexels) {
     const SolveResult r = SolveIterative(sys, InitialGuess(sys), opt);
     testing::PrintSolve("HDR 1e-4..1e4 magnified quad", sys, r);
     // Well observed: squared column norm >= 1/4 of the largest.
-    const Vector norms = ColumnSquaredNorms(sys.k.At(), 1);
+    const Vector norms = sys.k.ColumnSquaredNorms(1);
     const double maxNorm = *std::max_element(norms.begin(), norms.end());
     double worst = 0.0;
     int observed = 0;

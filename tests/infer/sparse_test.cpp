@@ -66,7 +66,7 @@ TEST(Sparse, MultiplyAndTransposeMatchDense) {
         EXPECT_NEAR(aty[static_cast<size_t>(c)], s, 1e-14);
     }
     // Column norms from the transpose.
-    const Vector norms = ColumnSquaredNorms(op.At(), 2);
+    const Vector norms = op.ColumnSquaredNorms(2);
     for (int64_t c = 0; c < 23; ++c) {
         double s = 0;
         for (int64_t r = 0; r < 37; ++r)

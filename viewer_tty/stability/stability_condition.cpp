@@ -58,7 +58,7 @@ double Norm2(const Vector& v) {
 // Channel 0 of K D with the empty columns removed.
 infer::CsrMatrix ScaledChannel0(const infer::LinearSystem& sys, double columnFloor, int threads,
                                 ConditionEstimate* est) {
-    const Vector norms = infer::ColumnSquaredNorms(sys.k.At(), threads);
+    const Vector norms = sys.k.ColumnSquaredNorms(threads);
     Vector nonZero;
     for (double v : norms)
         if (v > 0.0) nonZero.push_back(v);

@@ -251,7 +251,7 @@ std::string DirectSolve(const infer::LinearSystem& sys, const infer::SolveResult
 // HDR: the worst relative error over well-observed components (squared norm >= 1/4 of the max).
 double WorstObservedError(const infer::LinearSystem& sys, const Vector& x, const Vector& xStar,
                           int threads, int* observed) {
-    const Vector norms = infer::ColumnSquaredNorms(sys.k.At(), threads);
+    const Vector norms = sys.k.ColumnSquaredNorms(threads);
     const double maxNorm = *std::max_element(norms.begin(), norms.end());
     double worst = 0.0;
     *observed = 0;
