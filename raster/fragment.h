@@ -12,21 +12,22 @@
 #include <utility>
 #include <vector>
 
+#include "raster/matrix_rows.h"
 #include "raster/render.h"
 #include "raster/triangle_setup.h"
 
 namespace pem::raster {
 
-// What a band worker writes into: the picture, or (matrix mode) the rows of A; and the depth
+// What a band worker writes into: the picture, and (matrix mode) the rows of A too; and the depth
 // buffer when the frame has one (depth.h values, rows top-down like the picture).
 struct FragmentTarget {
     const PreparedFrame* frame;
     RenderOptions options;
     Image8* image8;
-    ImageF* imageF;                                               // Linear profile
-    RenderingMatrix* matrix;                                      // matrix mode: offsets per row
-    std::vector<std::vector<std::pair<uint32_t, double>>>* rows;  // matrix mode: entries per row
-    std::vector<uint32_t>* depth = nullptr;                       // Frame::depth set: its buffer
+    ImageF* imageF;                          // Linear profile
+    RenderingMatrix* matrix;                 // matrix mode: offsets per row
+    MatrixRows* rows;                        // matrix mode: taps per pixel
+    std::vector<uint32_t>* depth = nullptr;  // Frame::depth set: its buffer
 };
 
 constexpr int kBandQuadRows = 4;  // rows of 2x2 quads per band (8 pixel rows)

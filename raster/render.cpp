@@ -3,8 +3,8 @@
 // batches (contiguous chunks per thread), the quad loop over row bands (one band set per
 // thread), the depth test, shading (texture units times colour), conversion and blending. Batches
 // keep the setups small; a pass shared by several frames (RenderFrames) is set up once per batch
-// and drawn into each. The same loop either writes pixels or collects the rows of the rendering
-// matrix.
+// and drawn into each. The same loop writes pixels and, in matrix mode, collects the rows of the
+// rendering matrix as well.
 #include "raster/render.h"
 
 #include <algorithm>
@@ -253,6 +253,66 @@ std::vector<uint32_t>* ClearedDepth(const Frame& frame, std::vector<uint32_t>* b
     return buffer;
 }
 
+// A target drawing `frame` into *r: its pictures (and depth buffer) cleared.
+FragmentTarget ClearedTarget(const PreparedFrame& prepared, const RenderOptions& options,
+                             RenderResult* r) {
+    const Frame& frame = prepared.frame();
+    const size_t n = static_cast<size_t>(frame.width) * frame.height;
+    r->image8 = {frame.width, frame.height, std::vector<uint8_t>(4 * n)};
+    for (size_t i = 0; i < n; ++i)
+        for (int c = 0; c < 4; ++c) r->image8.rgba[4 * i + c] = frame.clear[c];
+    if (options.profile == Profile::Linear) {
+        r->imageF = {frame.width, frame.height, std::vector<float>(4 * n)};
+        for (size_t i = 0; i < 4 * n; ++i)
+            r->imageF.rgba[i] = static_cast<float>(r->image8.rgba[i]) / 255.0f;
+    }
+    return {&prepared,
+            options,
+            &r->image8,
+            &r->imageF,
+            nullptr,
+            nullptr,
+            ClearedDepth(frame, &r->depth)};
+}
+
+// The Linear profile's 8-bit picture from its float one, once drawn.
+void FinishResult(const RenderOptions& options, RenderResult* r) {
+    if (options.profile != Profile::Linear) return;
+    for (size_t i = 0; i < r->imageF.rgba.size(); ++i)
+        r->image8.rgba[i] =
+            UnormFromFloat(r->imageF.rgba[i], options.rounding == UnormRounding::HalfEven);
+}
+
+// CSR from the per-pixel taps: each pixel's taps sorted by texel, then per channel c the row of
+// columns 4 * texel + c, duplicate texels summed in sorted order; each pixel freed once copied.
+void RowsToCsr(MatrixRows* rows, RenderingMatrix* m) {
+    size_t taps = 0;
+    for (const auto& row : *rows) taps += row.size();
+    m->col.reserve(4 * taps);
+    m->val.reserve(4 * taps);
+    m->rowPtr.reserve(4 * rows->size() + 1);
+    m->rowPtr.push_back(0);
+    for (auto& row : *rows) {
+        std::sort(row.begin(), row.end(),
+                  [](const MatrixTap& a, const MatrixTap& b) { return a.texel < b.texel; });
+        for (size_t c = 0; c < 4; ++c) {
+            const int64_t first = static_cast<int64_t>(m->col.size());
+            for (size_t k = 0; k < row.size(); ++k) {
+                const uint32_t col = 4 * row[k].texel + static_cast<uint32_t>(c);
+                const double v = row[k].weight * static_cast<double>(row[k].modulation[c]);
+                if (static_cast<int64_t>(m->col.size()) > first && m->col.back() == col) {
+                    m->val.back() += v;
+                    continue;
+                }
+                m->col.push_back(col);
+                m->val.push_back(v);
+            }
+            m->rowPtr.push_back(static_cast<int64_t>(m->col.size()));
+        }
+        std::vector<MatrixTap>().swap(row);
+    }
+}
+
 // The float of each byte (c / 255, or llvmpipe's c * fl(1/255)), through a table of the 256.
 std::vector<float> ToFloat(const std::vector<uint8_t>& bytes, bool exact) {
     std::array<float, 256> table;
@@ -301,27 +361,10 @@ std::vector<RenderResult> RenderFrames(const std::vector<const PreparedFrame*>& 
         return results;
     }
     std::vector<FragmentTarget> targets;
-    for (size_t f = 0; f < frames.size(); ++f) {
-        const Frame& frame = frames[f]->frame();
-        const size_t n = static_cast<size_t>(frame.width) * frame.height;
-        RenderResult& r = results[f];
-        r.image8 = {frame.width, frame.height, std::vector<uint8_t>(4 * n)};
-        for (size_t i = 0; i < n; ++i)
-            for (int c = 0; c < 4; ++c) r.image8.rgba[4 * i + c] = frame.clear[c];
-        if (options.profile == Profile::Linear) {
-            r.imageF = {frame.width, frame.height, std::vector<float>(4 * n)};
-            for (size_t i = 0; i < 4 * n; ++i)
-                r.imageF.rgba[i] = static_cast<float>(r.image8.rgba[i]) / 255.0f;
-        }
-        targets.push_back({frames[f], options, &r.image8, &r.imageF, nullptr, nullptr,
-                           ClearedDepth(frame, &r.depth)});
-    }
+    for (size_t f = 0; f < frames.size(); ++f)
+        targets.push_back(ClearedTarget(*frames[f], options, &results[f]));
     if (!targets.empty()) DrawFrames(targets);
-    if (options.profile == Profile::Linear)
-        for (RenderResult& r : results)
-            for (size_t i = 0; i < r.imageF.rgba.size(); ++i)
-                r.image8.rgba[i] =
-                    UnormFromFloat(r.imageF.rgba[i], options.rounding == UnormRounding::HalfEven);
+    for (RenderResult& r : results) FinishResult(options, &r);
     return results;
 }
 
@@ -341,36 +384,20 @@ RenderingMatrix BuildRenderingMatrix(const PreparedFrame& prepared, const Render
     m.fragments.assign(n, 0);
     for (size_t i = 0; i < n; ++i)
         for (int c = 0; c < 4; ++c) m.offset[4 * i + c] = frame.clear[c] / 255.0;
-    std::vector<std::vector<std::pair<uint32_t, double>>> rows(4 * n);
-    std::vector<uint32_t> depth;
-    if (options.profile == Profile::Softpipe)
+    MatrixRows rows(n);
+    // The rows and the rendered picture in one draw (softpipe: the picture drawn after).
+    RenderResult r;
+    if (options.profile == Profile::Softpipe) {
         SoftpipeMatrixRows(prepared, &m, &rows);
-    else
-        DrawFrame({&prepared, options, nullptr, nullptr, &m, &rows, ClearedDepth(frame, &depth)});
-
-    // Merge duplicate columns per row (sorted), then CSR; each row freed once copied.
-    size_t taps = 0;
-    for (const auto& row : rows) taps += row.size();
-    m.col.reserve(taps);
-    m.val.reserve(taps);
-    m.rowPtr.reserve(rows.size() + 1);
-    m.rowPtr.push_back(0);
-    for (auto& row : rows) {
-        std::sort(row.begin(), row.end(),
-                  [](const auto& a, const auto& b) { return a.first < b.first; });
-        for (size_t k = 0; k < row.size(); ++k) {
-            if (!m.col.empty() && static_cast<int64_t>(m.col.size()) > m.rowPtr.back() &&
-                m.col.back() == row[k].first) {
-                m.val.back() += row[k].second;
-                continue;
-            }
-            m.col.push_back(row[k].first);
-            m.val.push_back(row[k].second);
-        }
-        m.rowPtr.push_back(static_cast<int64_t>(m.col.size()));
-        std::vector<std::pair<uint32_t, double>>().swap(row);
+        r = Render(prepared, options);
+    } else {
+        FragmentTarget tg = ClearedTarget(prepared, options, &r);
+        tg.matrix = &m;
+        tg.rows = &rows;
+        DrawFrame(tg);
+        FinishResult(options, &r);
     }
-    const RenderResult r = Render(prepared, options);
+    RowsToCsr(&rows, &m);
     m.rendered.resize(4 * n);
     for (size_t i = 0; i < 4 * n; ++i)
         m.rendered[i] = options.profile == Profile::Linear ? static_cast<double>(r.imageF.rgba[i])

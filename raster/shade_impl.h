@@ -122,13 +122,10 @@ void ShadeGroup(const FragmentTarget& tg, const Pass& pass, const LaneAttribs& q
 
         if (wantTaps) {
             const PixelTaps& lane = taps[static_cast<size_t>(l)];
-            AddFragmentRows(tg.matrix, tg.rows, pixel, pass, src, [&](auto& row, int c) {
+            AddFragmentRows(tg.matrix, tg.rows, pixel, pass, src, [&](std::vector<MatrixTap>& row) {
                 for (int k = 0; k < lane.Count(); ++k)
-                    row.push_back(
-                        {4 * lane.At(k).texel + static_cast<uint32_t>(c),
-                         static_cast<double>(lane.At(k).weight) * static_cast<double>(mod[c])});
+                    row.push_back({lane.At(k).texel, static_cast<double>(lane.At(k).weight), mod});
             });
-            continue;
         }
         if (linear) {
             float* d = &tg.imageF->rgba[4 * pixel];

@@ -152,13 +152,12 @@ void AddRows(const PreparedFrame& prepared, const Pass& pass, int x, int y,
     const size_t pixel =
         static_cast<size_t>(frame.height - 1 - y) * static_cast<size_t>(frame.width) +
         static_cast<size_t>(x);
-    AddFragmentRows(target->matrix, target->rows, pixel, pass, colour, [&](auto& row, int c) {
-        for (const SoftpipeTap& t : taps)
-            row.push_back(
-                {4 * prepared.indexer().Index(pass.texture[0], t.level, t.face, t.x, t.y) +
-                     static_cast<uint32_t>(c),
-                 t.weight * static_cast<double>(mod[static_cast<size_t>(c)])});
-    });
+    AddFragmentRows(
+        target->matrix, target->rows, pixel, pass, colour, [&](std::vector<MatrixTap>& row) {
+            for (const SoftpipeTap& t : taps)
+                row.push_back({prepared.indexer().Index(pass.texture[0], t.level, t.face, t.x, t.y),
+                               t.weight, mod});
+        });
 }
 
 // One quad: interpolation at its four pixels, the texture units (one LOD per quad), the

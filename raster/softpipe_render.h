@@ -31,6 +31,7 @@
 #include <utility>
 #include <vector>
 
+#include "raster/matrix_rows.h"
 #include "raster/render.h"
 
 namespace pem::raster {
@@ -42,8 +43,7 @@ RenderResult RenderSoftpipe(const PreparedFrame& frame);
 // top-down) and matrix->offset / matrix->fragments (sized by the caller). Unit 0's texels with
 // softpipe's weights (the sample is linear in the texels: bilinear and MIP lerps, EWA's
 // normalised weights, the tile cache's substitutions), unit 1 and the colour folded in.
-void SoftpipeMatrixRows(const PreparedFrame& frame, RenderingMatrix* matrix,
-                        std::vector<std::vector<std::pair<uint32_t, double>>>* rows);
+void SoftpipeMatrixRows(const PreparedFrame& frame, RenderingMatrix* matrix, MatrixRows* rows);
 
 // softpipe's float -> unorm8 (u_math.h float_to_ubyte).
 uint8_t SoftpipeUbyte(float x);
