@@ -65,26 +65,30 @@ CsrMatrix StackRows(const std::vector<RowBlock>& blocks) {
     if (blocks.empty()) return m;
     m.cols = blocks.front().matrix->cols;
     size_t rows = 0, entries = 0;
-    for (const RowBlock& b : blocks)
-        rows += b.matrix->rowPtr.size(), entries += b.matrix->col.size();
-    m.rowPtr.reserve(rows);
-    m.col.reserve(entries);
-    m.val.reserve(entries);
+    for (const RowBlock& b : blocks) {
+        if (b.matrix->cols != m.cols)
+            throw std::invalid_argument("StackRows: column counts differ");
+        if (b.rowWeight && static_cast<int64_t>(b.rowWeight->size()) != b.matrix->rows)
+            throw std::invalid_argument("StackRows: row weights");
+        rows += static_cast<size_t>(b.matrix->rows), entries += b.matrix->col.size();
+    }
+    // Sized once, filled block by block: columns copied, values scaled by the row's weight.
+    m.rowPtr.resize(rows + 1);
+    m.col.resize(entries);
+    m.val.resize(entries);
+    size_t row = 0, at = 0;
     for (const RowBlock& b : blocks) {
         const CsrMatrix& s = *b.matrix;
-        if (s.cols != m.cols) throw std::invalid_argument("StackRows: column counts differ");
-        if (b.rowWeight && static_cast<int64_t>(b.rowWeight->size()) != s.rows)
-            throw std::invalid_argument("StackRows: row weights");
+        std::copy(s.col.begin(), s.col.end(), m.col.begin() + static_cast<std::ptrdiff_t>(at));
         for (int64_t r = 0; r < s.rows; ++r) {
             const double w =
                 b.weight * (b.rowWeight ? (*b.rowWeight)[static_cast<size_t>(r)] : 1.0);
-            for (int64_t k = s.rowPtr[static_cast<size_t>(r)];
-                 k < s.rowPtr[static_cast<size_t>(r) + 1]; ++k) {
-                m.col.push_back(s.col[static_cast<size_t>(k)]);
-                m.val.push_back(w * s.val[static_cast<size_t>(k)]);
-            }
-            m.rowPtr.push_back(static_cast<int64_t>(m.val.size()));
+            const auto k0 = static_cast<size_t>(s.rowPtr[static_cast<size_t>(r)]);
+            const auto k1 = static_cast<size_t>(s.rowPtr[static_cast<size_t>(r) + 1]);
+            for (size_t k = k0; k < k1; ++k) m.val[at + k] = w * s.val[k];
+            m.rowPtr[++row] = static_cast<int64_t>(at + k1);
         }
+        at += s.col.size();
         m.rows += s.rows;
     }
     return m;
@@ -138,13 +142,16 @@ bool IsChannelDiagonal(const CsrMatrix& a) {
 
 bool QuadForm(const CsrMatrix& a, CsrMatrix* quads) {
     if (a.rows % kChannels != 0 || a.cols % kChannels != 0) return false;
+    if (a.val.size() % kChannels != 0) return false;
     CsrMatrix q;
     q.rows = a.rows / kChannels;
     q.cols = a.cols / kChannels;
-    q.rowPtr.reserve(static_cast<size_t>(q.rows) + 1);
-    q.col.reserve(a.col.size() / kChannels);
-    q.val.reserve(a.val.size() / kChannels);
+    q.rowPtr.resize(static_cast<size_t>(q.rows) + 1);
+    q.col.resize(a.col.size() / kChannels);
+    q.val.resize(a.val.size() / kChannels);
+    size_t at = 0;
     for (int64_t p = 0; p < q.rows; ++p) {
+        // Rows 4p + c: equal lengths, columns 4t + c, equal values.
         const size_t r0 = static_cast<size_t>(kChannels * p);
         const int64_t b0 = a.rowPtr[r0], len = a.rowPtr[r0 + 1] - b0;
         for (size_t c = 1; c < kChannels; ++c) {
@@ -155,13 +162,14 @@ bool QuadForm(const CsrMatrix& a, CsrMatrix* quads) {
                 if (a.col[ec] != a.col[e0] + c || a.val[ec] != a.val[e0]) return false;
             }
         }
+        if (at + static_cast<size_t>(len) > q.col.size()) return false;
         for (int64_t k = 0; k < len; ++k) {
             const size_t e0 = static_cast<size_t>(b0 + k);
             if (a.col[e0] % kChannels != 0) return false;
-            q.col.push_back(a.col[e0] / kChannels);
-            q.val.push_back(a.val[e0]);
+            q.col[at] = a.col[e0] / kChannels;
+            q.val[at++] = a.val[e0];
         }
-        q.rowPtr.push_back(static_cast<int64_t>(q.val.size()));
+        q.rowPtr[static_cast<size_t>(p) + 1] = static_cast<int64_t>(at);
     }
     *quads = std::move(q);
     return true;
