@@ -16,6 +16,7 @@
 #include <exception>
 #include <stdexcept>
 
+#include "base/parallel.h"
 #include "base/worker_pool.h"
 #include "raster/blend.h"
 #include "raster/clip.h"
@@ -284,33 +285,46 @@ void FinishResult(const RenderOptions& options, RenderResult* r) {
 }
 
 // CSR from the per-pixel taps: each pixel's taps sorted by texel, then per channel c the row of
-// columns 4 * texel + c, duplicate texels summed in sorted order; each pixel freed once copied.
-void RowsToCsr(MatrixRows* rows, RenderingMatrix* m) {
-    size_t taps = 0;
-    for (const auto& row : *rows) taps += row.size();
-    m->col.reserve(4 * taps);
-    m->val.reserve(4 * taps);
-    m->rowPtr.reserve(4 * rows->size() + 1);
-    m->rowPtr.push_back(0);
-    for (auto& row : *rows) {
-        std::sort(row.begin(), row.end(),
-                  [](const MatrixTap& a, const MatrixTap& b) { return a.texel < b.texel; });
-        for (size_t c = 0; c < 4; ++c) {
-            const int64_t first = static_cast<int64_t>(m->col.size());
-            for (size_t k = 0; k < row.size(); ++k) {
-                const uint32_t col = 4 * row[k].texel + static_cast<uint32_t>(c);
-                const double v = row[k].weight * static_cast<double>(row[k].modulation[c]);
-                if (static_cast<int64_t>(m->col.size()) > first && m->col.back() == col) {
-                    m->val.back() += v;
-                    continue;
-                }
-                m->col.push_back(col);
-                m->val.push_back(v);
-            }
-            m->rowPtr.push_back(static_cast<int64_t>(m->col.size()));
+// columns 4 * texel + c, duplicate texels summed in sorted order. Pixels are independent, so
+// ranges of them run in parallel (sort and count, then fill); each pixel freed once copied.
+void RowsToCsr(MatrixRows* rows, RenderingMatrix* m, int threads) {
+    const auto n = static_cast<int64_t>(rows->size());
+    const auto byTexel = [](const MatrixTap& a, const MatrixTap& b) { return a.texel < b.texel; };
+    // Step 1: each pixel's taps sorted, its distinct texels counted.
+    std::vector<uint32_t> distinct(rows->size(), 0);
+    base::ForRanges(n, threads, 4096, [&](int64_t p0, int64_t p1) {
+        for (auto p = static_cast<size_t>(p0); p < static_cast<size_t>(p1); ++p) {
+            std::vector<MatrixTap>& row = (*rows)[p];
+            std::sort(row.begin(), row.end(), byTexel);
+            for (size_t k = 0; k < row.size(); ++k)
+                distinct[p] += k == 0 || row[k].texel != row[k - 1].texel ? 1u : 0u;
         }
-        std::vector<MatrixTap>().swap(row);
-    }
+    });
+    // Step 2: row pointers, four rows of distinct[p] entries per pixel.
+    m->rowPtr.assign(4 * rows->size() + 1, 0);
+    for (size_t p = 0; p < rows->size(); ++p)
+        for (size_t c = 0; c < 4; ++c)
+            m->rowPtr[4 * p + c + 1] = m->rowPtr[4 * p + c] + distinct[p];
+    m->col.resize(static_cast<size_t>(m->rowPtr.back()));
+    m->val.resize(m->col.size());
+    // Step 3: the entries.
+    base::ForRanges(n, threads, 4096, [&](int64_t p0, int64_t p1) {
+        for (auto p = static_cast<size_t>(p0); p < static_cast<size_t>(p1); ++p) {
+            std::vector<MatrixTap>& row = (*rows)[p];
+            auto at = static_cast<size_t>(m->rowPtr[4 * p]);
+            for (size_t c = 0; c < 4; ++c)
+                for (size_t k = 0; k < row.size(); ++k) {
+                    const double v = row[k].weight * static_cast<double>(row[k].modulation[c]);
+                    if (k > 0 && row[k].texel == row[k - 1].texel) {
+                        m->val[at - 1] += v;
+                        continue;
+                    }
+                    m->col[at] = 4 * row[k].texel + static_cast<uint32_t>(c);
+                    m->val[at++] = v;
+                }
+            std::vector<MatrixTap>().swap(row);
+        }
+    });
 }
 
 // The float of each byte (c / 255, or llvmpipe's c * fl(1/255)), through a table of the 256.
@@ -397,7 +411,7 @@ RenderingMatrix BuildRenderingMatrix(const PreparedFrame& prepared, const Render
         DrawFrame(tg);
         FinishResult(options, &r);
     }
-    RowsToCsr(&rows, &m);
+    RowsToCsr(&rows, &m, options.threads);
     m.rendered.resize(4 * n);
     for (size_t i = 0; i < 4 * n; ++i)
         m.rendered[i] = options.profile == Profile::Linear ? static_cast<double>(r.imageF.rgba[i])
