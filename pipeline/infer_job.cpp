@@ -15,10 +15,10 @@
 #include "base/atomic_file.h"
 #include "base/input_error.h"
 #include "base/matrix_market.h"
-#include "base/png_io.h"
 #include "infer/cube_map.h"
 #include "infer/pem_file.h"
 #include "pipeline/layout.h"
+#include "pipeline/map_files.h"
 #include "pipeline/pem_manifest.h"
 #include "raster/profile.h"
 #include "raster/render.h"
@@ -54,34 +54,9 @@ double Since(Clock::time_point t0) {
 
 // Files of one map --------------------------------------------------------------------------
 
-// The 8-bit copy as one PNG: each level's six faces side by side, levels stacked.
-void WriteTexturePng(const raster::Texture& tex, const std::string& path) {
-    int height = 0;
-    for (int l = 0; l < tex.NumLevels(); ++l) height += tex.LevelHeight(l);
-    base::Image8 img{6 * tex.width, height, {}};
-    img.rgba.assign(static_cast<size_t>(img.width) * static_cast<size_t>(img.height) * 4, 0);
-    int y0 = 0;
-    for (int l = 0; l < tex.NumLevels(); ++l) {
-        const int n = tex.LevelWidth(l);
-        for (int f = 0; f < 6; ++f)
-            for (int j = 0; j < n; ++j)
-                for (int i = 0; i < n; ++i)
-                    for (int c = 0; c < 4; ++c)
-                        img.rgba[(static_cast<size_t>(y0 + j) * static_cast<size_t>(img.width) +
-                                  static_cast<size_t>(f * n + i)) *
-                                     4 +
-                                 static_cast<size_t>(c)] =
-                            tex.levels[static_cast<size_t>(l)]
-                                      [((static_cast<size_t>(f) * n + j) * n + i) * 4 + c];
-        y0 += n;
-    }
-    base::WritePng(path, img);
-}
-
 void WriteMapFiles(const infer::CubeMapF& map, const raster::SamplerState& sampler,
                    const infer::SolveResult& res, const std::string& stem, int threads) {
-    infer::WriteCubeMapExr(map, stem + ".exr", threads);
-    WriteTexturePng(infer::ToTexture8(map, sampler), stem + ".png");
+    WriteMapImages(map, infer::ToTexture8(map, sampler), stem, threads);
     infer::WriteLogCsv(res.log, stem + ".csv");
 }
 

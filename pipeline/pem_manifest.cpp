@@ -127,7 +127,41 @@ PemManifest PemManifestFor(const TraceManifest& trace, const std::string& pemDir
 }
 
 void WritePemManifest(const PemManifest& m) {
-    base::WriteTextAtomic(m.dir + "/" + kManifestJson, ManifestJson(m).dump(2) + "\n");
+    base::WriteTextAtomic(m.dir + "/" + kManifestJson, PemManifestText(m));
+}
+
+void CheckMapSize(const PemManifest& m, int size, const std::string& path) {
+    if (size < m.res || size > m.maxRes || (size & (size - 1)) != 0)
+        throw base::InputError(path,
+                               "face size " + std::to_string(size) + ", the manifest says " +
+                                   std::to_string(m.res) +
+                                   (m.maxRes > m.res ? " to " + std::to_string(m.maxRes) : ""));
+}
+
+std::string PemManifestText(const PemManifest& m) {
+    return ManifestJson(m).dump(2) + "\n";
+}
+
+PemManifest PemManifestFromText(const std::string& text, const std::string& dir,
+                                const std::string& source) {
+    PemManifest m;
+    try {
+        m = ManifestFromJson(json::parse(text));
+    } catch (const json::exception& e) {
+        throw base::InputError(source, std::string("malformed manifest: ") + e.what());
+    } catch (const std::runtime_error& e) {
+        throw base::InputError(source, e.what());
+    }
+    m.dir = dir;
+    return m;
+}
+
+PemManifest RelocatedPemManifest(const PemManifest& m, const std::string& dir) {
+    PemManifest out = m;
+    out.dir = dir;
+    out.scene = SceneForStorage(dir, ResolveScene(m.dir, m.scene, m.sceneGiven));
+    out.traceDir = SceneForStorage(dir, ResolveScene(m.dir, m.traceDir, m.traceDirGiven));
+    return out;
 }
 
 PemManifest ReadPemManifest(const std::string& dir) {

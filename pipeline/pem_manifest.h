@@ -44,4 +44,17 @@ PemManifest PemManifestFor(const TraceManifest& trace, const std::string& pemDir
 void WritePemManifest(const PemManifest& manifest);  // dir/manifest.json
 PemManifest ReadPemManifest(const std::string& dir);
 
+// base::InputError(path, ...) unless `size` is a face size the manifest allows for a map (a
+// power of two in [res, max_res]).
+void CheckMapSize(const PemManifest& manifest, int size, const std::string& path);
+
+// The text of manifest.json and back, for a manifest kept elsewhere (a packed PEM, pem_pack.h):
+// `dir` is where its relative paths start, `source` the file errors name.
+std::string PemManifestText(const PemManifest& manifest);
+PemManifest PemManifestFromText(const std::string& text, const std::string& dir,
+                                const std::string& source);
+
+// The manifest of the same maps kept in `dir`: the scene and trace paths stored relative to it.
+PemManifest RelocatedPemManifest(const PemManifest& manifest, const std::string& dir);
+
 }  // namespace pem::pipeline

@@ -11,6 +11,7 @@
 #include "infer/cube_map.h"
 #include "infer/pem_file.h"
 #include "pipeline/layout.h"
+#include "pipeline/pem_pack.h"
 
 namespace pem::pipeline {
 namespace {
@@ -18,11 +19,11 @@ namespace {
 // Maps by path, loaded on first use; a missing file is remembered as nullptr.
 class MapCache {
   public:
-    MapCache(std::string dir, int res, int maxRes, const raster::SamplerState& sampler)
-        : dir_(std::move(dir)), res_(res), maxRes_(maxRes), sampler_(sampler) {}
+    explicit MapCache(const PemManifest& manifest)
+        : manifest_(manifest), sampler_(manifest.hardware.Sampler()) {}
 
     const raster::Texture* Get(int view, int group, const std::string& name) {
-        const std::string path = MapPath(dir_, view, group, name);
+        const std::string path = MapPath(manifest_.dir, view, group, name);
         auto it = cache_.find(path);
         if (it == cache_.end()) {
             std::unique_ptr<raster::Texture> tex;
@@ -36,7 +37,7 @@ class MapCache {
     // The map's 8-bit copy: inside the directory, a readable cube map of a size the manifest
     // allows (a power of two in [res, max_res]).
     raster::Texture Load(const std::string& path) const {
-        CheckInside(dir_, path);
+        CheckInside(manifest_.dir, path);
         infer::CubeMapF map;
         try {
             map = infer::ReadCubeMapExr(path);
@@ -45,16 +46,11 @@ class MapCache {
         } catch (const std::exception& e) {
             throw base::InputError(path, std::string("cannot read the map: ") + e.what());
         }
-        if (map.size < res_ || map.size > maxRes_ || (map.size & (map.size - 1)) != 0)
-            throw base::InputError(
-                path, "face size " + std::to_string(map.size) + ", the manifest says " +
-                          std::to_string(res_) +
-                          (maxRes_ > res_ ? " to " + std::to_string(maxRes_) : ""));
+        CheckMapSize(manifest_, map.size, path);
         return infer::ToTexture8(map, sampler_);
     }
 
-    std::string dir_;
-    int res_, maxRes_;
+    PemManifest manifest_;
     raster::SamplerState sampler_;
     std::map<std::string, std::unique_ptr<raster::Texture>> cache_;
 };
@@ -74,7 +70,7 @@ runtime::MapSet LoadMapSet(const PemManifest& m) {
     tracing.fullTreeDepth = m.fullTreeDepth, tracing.minWeight = m.minWeight;
     tracing.fresnel = m.fresnel;
     set.tracing = tracing.Tracing();
-    auto cache = std::make_shared<MapCache>(m.dir, m.res, m.maxRes, m.hardware.Sampler());
+    auto cache = std::make_shared<MapCache>(m);
     set.map = [cache](int view, int group, const std::string& name) {
         return cache->Get(view, group, name);
     };
@@ -90,11 +86,30 @@ trace::Scene LoadPemScene(const PemManifest& m) {
     return trace::LoadScene(path);
 }
 
+runtime::MapSet PackMapSet(PemPack pack, const std::string& packFile) {
+    runtime::MapSet set = LoadMapSet(pack.manifest);
+    set.name = packFile;
+    auto maps = std::make_shared<std::map<MapKey, raster::Texture>>(std::move(pack.maps));
+    set.map = [maps](int view, int group, const std::string& name) -> const raster::Texture* {
+        auto it = maps->find({view, group, name});
+        return it == maps->end() ? nullptr : &it->second;
+    };
+    return set;
+}
+
 std::unique_ptr<runtime::Renderer> OpenPemDirectory(const std::string& pemDir, int threads,
                                                     const std::string& embreeIsa) {
-    const PemManifest m = ReadPemManifest(pemDir);
+    PemManifest m;
+    runtime::MapSet maps;
+    if (IsPemPack(pemDir)) {
+        PemPack pack = ReadPemPack(pemDir);
+        m = pack.manifest;
+        maps = PackMapSet(std::move(pack), pemDir);
+    } else {
+        m = ReadPemManifest(pemDir);
+        maps = LoadMapSet(m);
+    }
     trace::Scene scene = LoadPemScene(m);
-    runtime::MapSet maps = LoadMapSet(m);
     return std::make_unique<runtime::Renderer>(std::move(scene), std::move(maps), threads,
                                                embreeIsa);
 }

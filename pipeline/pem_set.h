@@ -8,13 +8,15 @@
 // Maps: view_v/group_g/<name>.exr (layout.h), read as float and converted to the hardware's
 // 8-bit copy (infer/cube_map.h ToTexture8) with the default sampler (trilinear, seamless).
 // The scene is found relative to the PEM directory first (pem_manifest.h), so a directory can
-// be moved or copied. Errors: base::InputError naming the file and the cause.
+// be moved or copied. A packed PEM (pem_pack.h) opens the same way, its scene found relative
+// to the pack's folder. Errors: base::InputError naming the file and the cause.
 #pragma once
 
 #include <memory>
 #include <string>
 
 #include "pipeline/pem_manifest.h"
+#include "pipeline/pem_pack.h"
 #include "runtime/map_set.h"
 #include "runtime/renderer.h"
 
@@ -26,6 +28,10 @@ runtime::MapSet LoadMapSet(const PemManifest& manifest);
 // The scene the directory was made from.
 trace::Scene LoadPemScene(const PemManifest& manifest);
 
+// The maps of a packed PEM (pem_pack.h), already decoded; the rest as LoadMapSet.
+runtime::MapSet PackMapSet(PemPack pack, const std::string& packFile);
+
+// A PEM directory or a packed PEM (pem_pack.h IsPemPack) opened for drawing.
 std::unique_ptr<runtime::Renderer> OpenPemDirectory(const std::string& pemDir, int threads,
                                                     const std::string& embreeIsa = "auto");
 

@@ -13,6 +13,7 @@
 #include "viewer_tty/cli/cmd_demo.h"
 #include "viewer_tty/cli/cmd_golden.h"
 #include "viewer_tty/cli/cmd_infer.h"
+#include "viewer_tty/cli/cmd_pack.h"
 #include "viewer_tty/cli/cmd_raster.h"
 #include "viewer_tty/cli/cmd_render.h"
 #include "viewer_tty/cli/cmd_report.h"
@@ -34,6 +35,7 @@ int main(int argc, char** argv) {
     pem::cli::AddRenderCommand(app);
     pem::cli::AddViewCommand(app);
     pem::cli::AddBakeCommand(app);
+    pem::cli::AddPackCommands(app);
     pem::cli::AddReportCommand(app);
     pem::cli::AddDemoCommand(app);
     pem::cli::AddStabilityCommand(app);
@@ -55,6 +57,8 @@ int main(int argc, char** argv) {
         if (app.got_subcommand("render")) return pem::cli::RunRenderCommand();
         if (app.got_subcommand("view")) return pem::cli::RunViewCommand();
         if (app.got_subcommand("bake")) return pem::cli::RunBakeCommand();
+        if (app.got_subcommand("pack")) return pem::cli::RunPackCommand();
+        if (app.got_subcommand("unpack")) return pem::cli::RunUnpackCommand();
         if (app.got_subcommand("report")) return pem::cli::RunReportCommand();
         if (app.got_subcommand("demo")) return pem::cli::RunDemoCommand();
         if (app.got_subcommand("stability")) return pem::cli::RunStabilityCommand();

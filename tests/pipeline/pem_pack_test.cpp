@@ -1,0 +1,204 @@
+// SPDX-License-Identifier: MIT
+// pem_pack_test.cpp — packed PEMs: the map code gives back the original bytes (lossless) or
+// bytes within the stated error (lossy), checked against the original texture; a lossless pack
+// renders byte-identically to its directory and unpacks to the same files; damaged or foreign
+// files are refused with one error naming them.
+#include "pipeline/pem_pack.h"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <functional>
+#include <random>
+
+#include "base/atomic_file.h"
+#include "base/byte_codec.h"
+#include "base/input_error.h"
+#include "infer/cube_map.h"
+#include "pipeline/map_coding.h"
+#include "pipeline/pem_set.h"
+#include "tests/pipeline/pem_dir_fixture.h"
+
+namespace pem::pipeline {
+namespace {
+
+// A cube of face size n with every level: smooth gradients, speckle noise (as inferred maps
+// have) and, with `shift`, the same picture moved by a few texels (a neighbouring sample).
+raster::Texture Picture(int n, int levels, unsigned seed, int shift = 0) {
+    std::mt19937 rng(seed);
+    raster::Texture t;
+    t.width = t.height = n;
+    for (int l = 0; l < levels; ++l) {
+        const int m = std::max(1, n >> l);
+        std::vector<uint8_t>& level = t.levels.emplace_back();
+        for (int f = 0; f < 6; ++f)
+            for (int j = 0; j < m; ++j)
+                for (int i = 0; i < m; ++i)
+                    for (int c = 0; c < 4; ++c) {
+                        const int smooth =
+                            (37 * f + 255 * (i + shift) / m + 90 * j / m + 50 * c) % 256;
+                        const int speckle = rng() % 7 == 0 ? static_cast<int>(rng() % 256) : 0;
+                        level.push_back(static_cast<uint8_t>(std::min(255, smooth + speckle)));
+                    }
+    }
+    return t;
+}
+
+int LargestDifference(const raster::Texture& a, const raster::Texture& b) {
+    int worst = 0;
+    for (size_t l = 0; l < a.levels.size(); ++l)
+        for (size_t k = 0; k < a.levels[l].size(); ++k)
+            worst = std::max(worst, std::abs(int(a.levels[l][k]) - int(b.levels[l][k])));
+    return worst;
+}
+
+TEST(MapCoding, LosslessGivesBackEveryByte) {
+    const raster::Texture a = Picture(16, 5, 1), b = Picture(16, 5, 2, 1);
+    for (const raster::Texture* previous : {static_cast<const raster::Texture*>(nullptr), &a}) {
+        const MapCode code = EncodeMap(b, previous, 0);
+        EXPECT_EQ(code.residuals.size(), ResidualBytes(16, 5));
+        const raster::Texture d = DecodeMap(code, 16, 5, previous, 0);
+        EXPECT_EQ(d.levels, b.levels);
+        EXPECT_EQ(d.width, 16);
+        EXPECT_EQ(d.kind, raster::TextureKind::Cube);
+    }
+}
+
+// Every decoded byte within E of the original, and the stream compresses better as E grows.
+TEST(MapCoding, LossyStaysWithinTheError) {
+    const raster::Texture a = Picture(32, 6, 3), b = Picture(32, 6, 4, 2);
+    size_t last = SIZE_MAX;
+    for (int e : {0, 1, 3, 8, kMaxMapError}) {
+        const MapCode code = EncodeMap(b, &a, e);
+        const raster::Texture d = DecodeMap(code, 32, 6, &a, e);
+        EXPECT_LE(LargestDifference(d, b), e) << "max error " << e;
+        const size_t bytes = base::Compress(base::ByteCodec::Zstd, code.residuals).size();
+        EXPECT_LT(bytes, last) << "max error " << e;
+        last = bytes;
+    }
+}
+
+// The neighbour's copy is used: a map equal to its neighbour codes to almost nothing.
+TEST(MapCoding, PredictsFromTheNeighbourSample) {
+    const raster::Texture a = Picture(32, 6, 5);
+    const MapCode alone = EncodeMap(a, nullptr, 0), fromNeighbour = EncodeMap(a, &a, 0);
+    const size_t bytesAlone = base::Compress(base::ByteCodec::Zstd, alone.residuals).size();
+    const size_t bytesFrom = base::Compress(base::ByteCodec::Zstd, fromNeighbour.residuals).size();
+    EXPECT_LT(bytesFrom * 20, bytesAlone);
+}
+
+TEST(MapCoding, RefusesACodeOfAnotherSize) {
+    const raster::Texture a = Picture(8, 4, 6);
+    MapCode code = EncodeMap(a, nullptr, 0);
+    EXPECT_THROW(DecodeMap(code, 16, 4, nullptr, 0), std::runtime_error);
+    code.predictors[0] = 2;  // "from the neighbour" without one
+    EXPECT_THROW(DecodeMap(code, 8, 4, nullptr, 0), std::runtime_error);
+}
+
+TEST(ByteCodec, BothCodecsGiveBackTheBytes) {
+    std::vector<uint8_t> raw(10000);
+    for (size_t i = 0; i < raw.size(); ++i) raw[i] = static_cast<uint8_t>((i * i) % 251);
+    for (base::ByteCodec c : {base::ByteCodec::Zstd, base::ByteCodec::Xz}) {
+        const std::vector<uint8_t> packed = base::Compress(c, raw);
+        EXPECT_EQ(base::Decompress(c, packed, raw.size()), raw);
+        EXPECT_THROW(base::Decompress(c, packed, raw.size() + 1), std::runtime_error);
+        std::vector<uint8_t> cut(packed.begin(), packed.end() - 4);
+        EXPECT_THROW(base::Decompress(c, cut, raw.size()), std::runtime_error);
+    }
+    EXPECT_THROW(base::ByteCodecNamed("gzip"), std::invalid_argument);
+}
+
+// A PEM directory whose map is a noisy picture, and a second sample with its neighbour.
+PemManifest MakeNoisyPemDir(const fs::path& dir) {
+    PemManifest m = MakePemDir(dir);
+    raster::Texture t = Picture(8, 4, 7);
+    infer::WriteCubeMapExr(infer::FromTexture8(t), MapPath(m.dir, 0, 0, "pem_distant"));
+    infer::WriteCubeMapExr(infer::FromTexture8(Picture(8, 4, 8, 1)),
+                           MapPath(m.dir, 0, 0, "pem_local"));
+    base::WriteTextAtomic(m.dir + "/infer.json", "{\"note\": \"kept verbatim\"}\n");
+    return m;
+}
+
+trace::FloatImage RenderPem(const std::string& source) {
+    const auto renderer = OpenPemDirectory(source, 1);
+    runtime::RenderSettings s;
+    s.method = runtime::Method::Pem;
+    return renderer->Render(renderer->SampleCamera(0), s).image;
+}
+
+TEST(PemPack, LosslessRendersAndUnpacksAsTheDirectory) {
+    const fs::path dir = FreshDir("pem_pack");
+    const PemManifest m = MakeNoisyPemDir(dir);
+    const std::string pack = (dir / "p.pempack").string();
+    for (base::ByteCodec codec : {base::ByteCodec::Zstd, base::ByteCodec::Xz}) {
+        const PackStats s = PackPem(m.dir, pack, {codec, 0});
+        EXPECT_EQ(s.maps, 2);
+        EXPECT_EQ(s.maxError, 0);
+        EXPECT_TRUE(IsPemPack(pack));
+        EXPECT_EQ(RenderPem(pack), RenderPem(m.dir));
+    }
+    // Unpacked: the same maps (as 8-bit copies), the same other files, a manifest that finds the
+    // scene from the new place.
+    UnpackPem(pack, (dir / "out").string(), 1);
+    const auto before = ReadTree(m.dir), after = ReadTree(dir / "out");
+    EXPECT_EQ(after.at("infer.json"), before.at("infer.json"));
+    EXPECT_EQ(after.size(), 6u);  // manifest, infer.json, two maps' EXR and PNG
+    EXPECT_EQ(RenderPem((dir / "out").string()), RenderPem(m.dir));
+    EXPECT_THROW(UnpackPem(pack, (dir / "out").string(), 1), base::InputError);  // exists
+    fs::remove_all(dir);
+}
+
+TEST(PemPack, LossyKeepsTheBound) {
+    const fs::path dir = FreshDir("pem_pack_lossy");
+    const PemManifest m = MakeNoisyPemDir(dir);
+    const std::string pack = (dir / "p.pempack").string();
+    const PackStats s = PackPem(m.dir, pack, {base::ByteCodec::Zstd, 4});
+    EXPECT_LE(s.maxError, 4);
+    EXPECT_GT(s.maxError, 0);
+    const PemPack p = ReadPemPack(pack);
+    EXPECT_EQ(p.maxError, 4);
+    const raster::Texture original = Picture(8, 4, 7);
+    EXPECT_LE(LargestDifference(p.maps.at({0, 0, "pem_distant"}), original), 4);
+    fs::remove_all(dir);
+}
+
+std::string ErrorOf(const std::function<void()>& f) {
+    try {
+        f();
+    } catch (const base::InputError& e) {
+        return e.what();
+    }
+    return "";
+}
+
+TEST(PemPack, RefusesDamagedAndForeignFiles) {
+    const fs::path dir = FreshDir("pem_pack_bad");
+    const PemManifest m = MakeNoisyPemDir(dir);
+    const std::string pack = (dir / "p.pempack").string();
+    PackPem(m.dir, pack, {});
+    std::string bytes = ReadTree(dir).at("p.pempack");
+    auto write = [&](const std::string& name, const std::string& content) {
+        const std::string path = (dir / name).string();
+        std::ofstream(path, std::ios::binary) << content;
+        return path;
+    };
+    const std::string foreign = write("foreign", "not a pack at all");
+    EXPECT_FALSE(IsPemPack(foreign));
+    EXPECT_EQ(ErrorOf([&] { ReadPemPack(foreign); }).rfind(foreign + ": not a packed PEM", 0), 0u);
+    const std::string cut = write("cut", bytes.substr(0, bytes.size() - 10));
+    EXPECT_NE(ErrorOf([&] { ReadPemPack(cut); }).find("truncated"), std::string::npos);
+    std::string flipped = bytes;
+    flipped[flipped.size() - 3] ^= 0x40;
+    const std::string damaged = write("damaged", flipped);
+    EXPECT_NE(ErrorOf([&] { ReadPemPack(damaged); }).find("checksum"), std::string::npos);
+    const std::string header = write("header", bytes.substr(0, 40));
+    EXPECT_EQ(ErrorOf([&] { ReadPemPack(header); }).rfind(header + ": ", 0), 0u);
+    EXPECT_EQ(ErrorOf([&] { OpenPemDirectory(damaged, 1); }).rfind(damaged + ": ", 0), 0u);
+    // A failed unpack leaves nothing behind.
+    EXPECT_THROW(UnpackPem(damaged, (dir / "out").string(), 1), base::InputError);
+    EXPECT_FALSE(fs::exists(dir / "out"));
+    fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace pem::pipeline

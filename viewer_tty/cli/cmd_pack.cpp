@@ -1,0 +1,72 @@
+// SPDX-License-Identifier: MIT
+// cmd_pack.cpp — `pemref pack` / `pemref unpack` (cmd_pack.h).
+#include "viewer_tty/cli/cmd_pack.h"
+
+#include <cstdio>
+#include <string>
+
+#include "base/input_error.h"
+#include "pipeline/map_coding.h"
+#include "pipeline/pem_pack.h"
+
+namespace pem::cli {
+namespace {
+
+struct PackArgs {
+    std::string in, out, codec = "zstd";
+    int maxError = 0, threads = 1;
+    bool quiet = false;
+};
+
+PackArgs& Args() {
+    static PackArgs args;
+    return args;
+}
+
+double Ratio(uint64_t a, uint64_t b) {
+    return b ? static_cast<double>(a) / static_cast<double>(b) : 0.0;
+}
+
+}  // namespace
+
+void AddPackCommands(CLI::App& app) {
+    PackArgs& a = Args();
+    CLI::App* pack = app.add_subcommand("pack", "a PEM directory as one compressed file");
+    pack->add_option("pem_dir", a.in, "output directory of pemref infer or bake")->required();
+    pack->add_option("-o,--out", a.out, "the packed PEM to write")->required();
+    pack->add_option("--codec", a.codec, "byte codec: zstd | xz")
+        ->check(CLI::IsMember({"zstd", "xz"}));
+    pack->add_option("--max-error", a.maxError, "largest change of an 8-bit texel (0: lossless)")
+        ->check(CLI::Range(0, pipeline::kMaxMapError));
+    pack->add_flag("--quiet", a.quiet, "no summary line");
+    CLI::App* unpack = app.add_subcommand("unpack", "a packed PEM as a PEM directory again");
+    unpack->add_option("pack", a.in, "the packed PEM")->required();
+    unpack->add_option("-o,--out", a.out, "the PEM directory to make (must not exist)")->required();
+    unpack->add_option("--threads", a.threads, "worker threads")->check(CLI::Range(1, 256));
+}
+
+int RunPackCommand() {
+    const PackArgs& a = Args();
+    pipeline::PackOptions opt;
+    opt.codec = base::ByteCodecNamed(a.codec);
+    opt.maxError = a.maxError;
+    const pipeline::PackStats s = pipeline::PackPem(a.in, a.out, opt);
+    if (!a.quiet)
+        std::printf(
+            "%s: %d maps of %d samples, %llu bytes (%.0f per sample), max error %d; "
+            "%.1f:1 against the EXR maps, %.1f:1 against the PNG maps, %.1f:1 against the raw "
+            "8-bit maps\n",
+            a.out.c_str(), s.maps, s.samples, static_cast<unsigned long long>(s.packBytes),
+            static_cast<double>(s.packBytes) / std::max(1, s.samples), s.maxError,
+            Ratio(s.exrBytes, s.packBytes), Ratio(s.pngBytes, s.packBytes),
+            Ratio(s.rawBytes, s.packBytes));
+    return 0;
+}
+
+int RunUnpackCommand() {
+    const PackArgs& a = Args();
+    pipeline::UnpackPem(a.in, a.out, a.threads);
+    return 0;
+}
+
+}  // namespace pem::cli
