@@ -6,6 +6,8 @@
 #include <cstdlib>
 #include <stdexcept>
 
+#include "base/j2k_codec.h"
+
 namespace pem::pipeline {
 namespace {
 
@@ -129,7 +131,15 @@ size_t ResidualBytes(int width, int levels) {
     return total;
 }
 
-MapCode EncodeMap(const raster::Texture& texture, const raster::Texture* previous, int maxError) {
+size_t PredictedBytes(int width, const std::vector<std::vector<uint8_t>>& transformed) {
+    size_t total = 0;
+    for (size_t l = 0; l < transformed.size(); ++l)
+        if (transformed[l].empty()) total += LevelBytes(width, static_cast<int>(l));
+    return total;
+}
+
+MapCode EncodeMap(const raster::Texture& texture, const raster::Texture* previous, int maxError,
+                  double ratio) {
     const int levels = texture.NumLevels();
     if (!UsablePrevious(previous, texture.width, levels)) previous = nullptr;
     const Quantizer quant{maxError};
@@ -142,6 +152,16 @@ MapCode EncodeMap(const raster::Texture& texture, const raster::Texture* previou
         if (l > 0) decimated = Decimate(decimated, texture.LevelWidth(l - 1));
         const Bases bases = BasesAt(l, previous, &decimated);
         Level recon(original.size());
+        code.transformed.emplace_back();
+        if (ratio > 0.0 && n >= kMinTransformSize) {
+            // The level by the transform codec (the finest level's decoded bytes: the base of
+            // the decimated predictor below).
+            code.transformed.back() = base::EncodeJ2k({n, 6 * n, 4, original}, ratio);
+            recon = base::DecodeJ2k(code.transformed.back()).data;
+            code.predictors.insert(code.predictors.end(), 4, 0);
+            if (l == 0) decimated = recon;
+            continue;
+        }
         for (int c = 0; c < 4; ++c) {
             // Step 1: the predictor with the smallest open-loop residuals.
             int best = 0;
@@ -168,7 +188,8 @@ raster::Texture DecodeMap(const MapCode& code, int width, int levels,
                           const raster::Texture* previous, int maxError) {
     if (width < 1 || levels < 1 || levels > 16 ||
         code.predictors.size() != 4 * static_cast<size_t>(levels) ||
-        code.residuals.size() != ResidualBytes(width, levels))
+        code.transformed.size() != static_cast<size_t>(levels) ||
+        code.residuals.size() != PredictedBytes(width, code.transformed))
         throw std::runtime_error("the map's code does not fit its size");
     if (!UsablePrevious(previous, width, levels)) previous = nullptr;
     const Quantizer quant{maxError};
@@ -182,6 +203,14 @@ raster::Texture DecodeMap(const MapCode& code, int width, int levels,
         if (l > 0) decimated = Decimate(decimated, tex.LevelWidth(l - 1));
         const Bases bases = BasesAt(l, previous, &decimated);
         Level recon(LevelBytes(width, l));
+        if (!code.transformed[static_cast<size_t>(l)].empty()) {
+            recon = base::DecodeJ2k(code.transformed[static_cast<size_t>(l)]).data;
+            if (recon.size() != LevelBytes(width, l))
+                throw std::runtime_error("a transformed level of the map has another size");
+            if (l == 0) decimated = recon;
+            tex.levels.push_back(std::move(recon));
+            continue;
+        }
         for (int c = 0; c < 4; ++c) {
             const int p = code.predictors[4 * static_cast<size_t>(l) + static_cast<size_t>(c)];
             if (p >= 2 * kBases || (p / 2 != kZero && !bases.of[p / 2]))

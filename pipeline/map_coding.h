@@ -2,7 +2,7 @@
 // map_coding.h — predictive coding of one PEM map's 8-bit copy (every MIP level, the bytes the
 // hardware samples), the inner code of the packed PEM (pem_pack.h).
 //
-//   MapCode code = EncodeMap(texture, previous, /*maxError=*/0);   // lossless
+//   MapCode code = EncodeMap(texture, previous, /*maxError=*/0);   // lossless, predictive
 //   raster::Texture t = DecodeMap(code, texture.width, texture.NumLevels(), previous, 0);
 //   // t.levels == texture.levels
 //
@@ -17,6 +17,9 @@
 // every decoded byte lies within maxError of the original; maxError 0 is lossless (residuals
 // modulo 256). The stream holds one zigzag byte per texel and channel, level by level, channel
 // by channel, face by face, row by row — for a byte codec (base/byte_codec.h) to compress.
+// With a ratio, every level whose faces are at least kMinTransformSize wide is instead coded as
+// one JPEG 2000 image (n × 6n, RGBA; base/j2k_codec.h) at that compression ratio (1: lossless),
+// the decimated predictor of the smaller levels starting from the decoded finest level.
 // Not here: files, the byte codec, the sampler (the caller sets it).
 #pragma once
 
@@ -33,17 +36,25 @@ constexpr int kMaxMapError = 31;
 struct MapCode {
     std::vector<uint8_t> predictors;  // per level and channel: base * 2 + spatial
     std::vector<uint8_t> residuals;   // see the header comment
+    // Per level: its JPEG 2000 codestream, or empty when the level is predicted.
+    std::vector<std::vector<uint8_t>> transformed;
 };
 
+// Levels with faces at least this wide are transform-coded when a ratio is given.
+constexpr int kMinTransformSize = 8;
+
 // `previous` (may be null) must be a cube of the same width and levels to be used.
-MapCode EncodeMap(const raster::Texture& texture, const raster::Texture* previous, int maxError);
+MapCode EncodeMap(const raster::Texture& texture, const raster::Texture* previous, int maxError,
+                  double ratio = 0.0);
 
 // The decoded cube (sampler left default). std::runtime_error when the code does not fit the
 // size and levels (a corrupt or truncated pack).
 raster::Texture DecodeMap(const MapCode& code, int width, int levels,
                           const raster::Texture* previous, int maxError);
 
-// The bytes of the residual stream of a cube of this size and level count.
+// The bytes of the residual stream of a cube of this size and level count (every level
+// predicted), and of the predicted levels only.
 size_t ResidualBytes(int width, int levels);
+size_t PredictedBytes(int width, const std::vector<std::vector<uint8_t>>& transformed);
 
 }  // namespace pem::pipeline

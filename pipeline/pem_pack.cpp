@@ -52,14 +52,20 @@ json BlobJson(uint64_t offset, size_t bytes, size_t rawBytes) {
     return {{"offset", offset}, {"bytes", bytes}, {"raw_bytes", rawBytes}};
 }
 
-// The decompressed blob an entry of the header names, inside the payload.
-Bytes ReadBlob(const json& entry, const Bytes& payload, base::ByteCodec codec) {
+// The bytes of the payload an entry of the header names, as stored.
+std::span<const uint8_t> PayloadBytes(const json& entry, const Bytes& payload) {
     const uint64_t offset = entry.at("offset").get<uint64_t>();
     const uint64_t bytes = entry.at("bytes").get<uint64_t>();
-    const uint64_t raw = entry.at("raw_bytes").get<uint64_t>();
-    if (offset > payload.size() || bytes > payload.size() - offset || raw > (uint64_t{1} << 32))
+    if (offset > payload.size() || bytes > payload.size() - offset)
         throw std::runtime_error("a blob lies outside the payload");
-    return base::Decompress(codec, std::span(payload).subspan(offset, bytes), raw);
+    return std::span(payload).subspan(offset, bytes);
+}
+
+// The same, decompressed by the pack's byte codec.
+Bytes ReadBlob(const json& entry, const Bytes& payload, base::ByteCodec codec) {
+    const uint64_t raw = entry.at("raw_bytes").get<uint64_t>();
+    if (raw > (uint64_t{1} << 32)) throw std::runtime_error("a blob is too large");
+    return base::Decompress(codec, PayloadBytes(entry, payload), raw);
 }
 
 // Packing ---------------------------------------------------------------------------------------
@@ -186,6 +192,9 @@ bool IsPemPack(const std::string& path) {
 }
 
 PackStats PackPem(const std::string& pemDir, const std::string& packFile, const PackOptions& opt) {
+    if (!(opt.ratio == 0.0 || (opt.ratio >= 1.0 && opt.ratio <= 1000.0)))
+        throw base::InputError("--ratio " + std::to_string(opt.ratio),
+                               "must be 0 or lie in [1, 1000]");
     if (opt.maxError < 0 || opt.maxError > kMaxMapError)
         throw base::InputError("--max-error " + std::to_string(opt.maxError),
                                "must lie in [0, " + std::to_string(kMaxMapError) + "]");
@@ -210,12 +219,19 @@ PackStats PackPem(const std::string& pemDir, const std::string& packFile, const 
                 auto prev = last.find({g, name});
                 const raster::Texture* previous =
                     prev == last.end() ? nullptr : &prev->second.second;
-                const MapCode code = EncodeMap(tex, previous, opt.maxError);
+                const MapCode code = EncodeMap(tex, previous, opt.maxError, opt.ratio);
                 raster::Texture decoded =
                     DecodeMap(code, tex.width, tex.NumLevels(), previous, opt.maxError);
                 Bytes raw = code.predictors;
                 raw.insert(raw.end(), code.residuals.begin(), code.residuals.end());
                 json entry = b.Add(raw);
+                entry["transformed"] = json::array();
+                for (const Bytes& t : code.transformed) {
+                    entry["transformed"].push_back(
+                        t.empty() ? json(nullptr) : BlobJson(b.payload.size(), t.size(), t.size()));
+                    b.payload.insert(b.payload.end(), t.begin(), t.end());
+                    stats.mapBytes += t.size();
+                }
                 entry.update({{"view", v},
                               {"group", g},
                               {"name", name},
@@ -225,7 +241,7 @@ PackStats PackPem(const std::string& pemDir, const std::string& packFile, const 
                 maps.push_back(entry);
                 stats.maps++;
                 stats.mapBytes += entry.at("bytes").get<uint64_t>();
-                stats.rawBytes += code.residuals.size();
+                stats.rawBytes += ResidualBytes(tex.width, tex.NumLevels());
                 stats.exrBytes += FileBytes(path);
                 stats.pngBytes += FileBytes(PreviewPath(path));
                 stats.maxError = std::max(stats.maxError, LargestError(tex, decoded));
@@ -243,6 +259,7 @@ PackStats PackPem(const std::string& pemDir, const std::string& packFile, const 
                 {"version", kVersion},
                 {"codec", base::ByteCodecName(opt.codec)},
                 {"max_error", opt.maxError},
+                {"ratio", opt.ratio},
                 {"manifest", PemManifestText(RelocatedPemManifest(m, packDir))},
                 {"payload_bytes", b.payload.size()},
                 {"payload_sha256", base::Sha256Hex(b.payload.data(), b.payload.size())},
@@ -287,8 +304,14 @@ PemPack ReadPemPack(const std::string& packFile) {
             const Bytes blob = ReadBlob(e, raw.payload, codec);
             const size_t np = 4 * static_cast<size_t>(std::clamp(levels, 0, 16));
             if (blob.size() < np) throw std::runtime_error("a map's blob is too short");
-            const MapCode code{Bytes(blob.begin(), blob.begin() + static_cast<std::ptrdiff_t>(np)),
-                               Bytes(blob.begin() + static_cast<std::ptrdiff_t>(np), blob.end())};
+            MapCode code{Bytes(blob.begin(), blob.begin() + static_cast<std::ptrdiff_t>(np)),
+                         Bytes(blob.begin() + static_cast<std::ptrdiff_t>(np), blob.end()),
+                         {}};
+            for (const json& t : e.at("transformed")) {
+                const std::span<const uint8_t> bytes =
+                    t.is_null() ? std::span<const uint8_t>() : PayloadBytes(t, raw.payload);
+                code.transformed.emplace_back(bytes.begin(), bytes.end());
+            }
             raster::Texture tex = DecodeMap(code, size, levels, previous, p.maxError);
             tex.sampler = sampler;
             if (!p.maps.emplace(key, std::move(tex)).second)

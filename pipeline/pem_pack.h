@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // pem_pack.h — the packed PEM: a whole PEM directory in one file, its maps coded predictively
 // (map_coding.h: MIP levels from the decimated finest level, each sample from its neighbour's)
-// and compressed by a byte codec (base/byte_codec.h). Its one writer and its one reader.
+// and compressed by a byte codec (base/byte_codec.h), or its larger levels by JPEG 2000 at a
+// compression ratio (lossy). Its one writer and its one reader.
 //
 //   PackStats s = PackPem("out/pem", "out/pem.pempack", {});   // lossless
 //   PemPack p = ReadPemPack("out/pem.pempack");                 // p.maps: the 8-bit copies
@@ -14,8 +15,9 @@
 // back to the same bytes) and the PNG preview from it.
 //
 // File: "PEMPACK1", the header's length (8 bytes, little-endian), the header (JSON: format
-// pemref_pack, version, codec, max_error, manifest text, payload size and SHA-256, the files and
-// the maps with their blob's offset and sizes), then the blobs. Errors: base::InputError naming
+// pemref_pack, version, codec, max_error, ratio, manifest text, payload size and SHA-256, the
+// files and the maps with their blobs' offsets and sizes: the byte-coded predictors and residuals,
+// and per level the JPEG 2000 codestream or null), then the blobs. Errors: base::InputError naming
 // the file and the cause (not a pack, truncated, checksum, corrupt blob, bad map size).
 #pragma once
 
@@ -33,6 +35,7 @@ namespace pem::pipeline {
 struct PackOptions {
     base::ByteCodec codec = base::ByteCodec::Zstd;
     int maxError = 0;  // every decoded byte within maxError of the directory's (0: lossless)
+    double ratio = 0.0;  // ≥ 1: levels with faces ≥ 8 wide by JPEG 2000 at this ratio (1: lossless)
 };
 
 // What packing measured: the pack against the directory's map files.

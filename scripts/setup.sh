@@ -6,7 +6,7 @@ packages=(
   build-essential cmake pkg-config git clang libclang-rt-14-dev
   libglm-dev nlohmann-json3-dev libcli11-dev libpng-dev libgtest-dev
   libopenexr-dev libtinygltf-dev libembree-dev libtbb-dev
-  libeigen3-dev libsuitesparse-dev libzstd-dev liblzma-dev
+  libeigen3-dev libsuitesparse-dev libzstd-dev liblzma-dev libopenjp2-7-dev
   libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri
   tmux python3 python3-scipy openexr clang-format
   assimp-testmodels

@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
 #include <functional>
 #include <random>
@@ -87,6 +88,27 @@ TEST(MapCoding, PredictsFromTheNeighbourSample) {
     EXPECT_LT(bytesFrom * 20, bytesAlone);
 }
 
+// JPEG 2000 levels: ratio 1 gives back every byte; ratio 4 stays close to the original (PSNR of
+// the decoded levels against it) and codes the transformed levels in about a quarter.
+TEST(MapCoding, TransformCodedLevels) {
+    const raster::Texture a = Picture(32, 6, 9);
+    const MapCode lossless = EncodeMap(a, nullptr, 0, 1.0);
+    ASSERT_EQ(lossless.transformed.size(), 6u);
+    EXPECT_FALSE(lossless.transformed[2].empty());  // 8 wide
+    EXPECT_TRUE(lossless.transformed[3].empty());   // 4 wide: predicted
+    EXPECT_EQ(DecodeMap(lossless, 32, 6, nullptr, 0).levels, a.levels);
+    const MapCode lossy = EncodeMap(a, nullptr, 0, 4.0);
+    const raster::Texture d = DecodeMap(lossy, 32, 6, nullptr, 0);
+    EXPECT_NE(d.levels[0], a.levels[0]);
+    double se = 0;
+    for (size_t k = 0; k < a.levels[0].size(); ++k)
+        se += std::pow(double(d.levels[0][k]) - double(a.levels[0][k]), 2);
+    const double psnr = 10 * std::log10(255.0 * 255.0 * double(a.levels[0].size()) / se);
+    EXPECT_GT(psnr, 20.0);
+    EXPECT_LT(lossy.transformed[0].size(), a.levels[0].size() / 3);
+    EXPECT_EQ(d.levels[3], a.levels[3]);  // the predicted levels stay lossless at max error 0
+}
+
 TEST(MapCoding, RefusesACodeOfAnotherSize) {
     const raster::Texture a = Picture(8, 4, 6);
     MapCode code = EncodeMap(a, nullptr, 0);
@@ -131,12 +153,15 @@ TEST(PemPack, LosslessRendersAndUnpacksAsTheDirectory) {
     const PemManifest m = MakeNoisyPemDir(dir);
     const std::string pack = (dir / "p.pempack").string();
     for (base::ByteCodec codec : {base::ByteCodec::Zstd, base::ByteCodec::Xz}) {
-        const PackStats s = PackPem(m.dir, pack, {codec, 0});
+        const PackStats s = PackPem(m.dir, pack, {codec, 0, 0.0});
         EXPECT_EQ(s.maps, 2);
         EXPECT_EQ(s.maxError, 0);
         EXPECT_TRUE(IsPemPack(pack));
         EXPECT_EQ(RenderPem(pack), RenderPem(m.dir));
     }
+    // JPEG 2000 lossless (ratio 1) renders the same frame too.
+    EXPECT_EQ(PackPem(m.dir, pack, {base::ByteCodec::Zstd, 0, 1.0}).maxError, 0);
+    EXPECT_EQ(RenderPem(pack), RenderPem(m.dir));
     // Unpacked: the same maps (as 8-bit copies), the same other files, a manifest that finds the
     // scene from the new place.
     UnpackPem(pack, (dir / "out").string(), 1);
@@ -152,7 +177,7 @@ TEST(PemPack, LossyKeepsTheBound) {
     const fs::path dir = FreshDir("pem_pack_lossy");
     const PemManifest m = MakeNoisyPemDir(dir);
     const std::string pack = (dir / "p.pempack").string();
-    const PackStats s = PackPem(m.dir, pack, {base::ByteCodec::Zstd, 4});
+    const PackStats s = PackPem(m.dir, pack, {base::ByteCodec::Zstd, 4, 0.0});
     EXPECT_LE(s.maxError, 4);
     EXPECT_GT(s.maxError, 0);
     const PemPack p = ReadPemPack(pack);

@@ -15,6 +15,7 @@ namespace {
 struct PackArgs {
     std::string in, out, codec = "zstd";
     int maxError = 0, threads = 1;
+    double ratio = 0.0;
     bool quiet = false;
 };
 
@@ -38,6 +39,10 @@ void AddPackCommands(CLI::App& app) {
         ->check(CLI::IsMember({"zstd", "xz"}));
     pack->add_option("--max-error", a.maxError, "largest change of an 8-bit texel (0: lossless)")
         ->check(CLI::Range(0, pipeline::kMaxMapError));
+    pack->add_option("--ratio", a.ratio,
+                     "levels of faces >= 8 wide by JPEG 2000 at this compression ratio (0: "
+                     "predictive; 1: JPEG 2000 lossless)")
+        ->check(CLI::Range(0.0, 1000.0));
     pack->add_flag("--quiet", a.quiet, "no summary line");
     CLI::App* unpack = app.add_subcommand("unpack", "a packed PEM as a PEM directory again");
     unpack->add_option("pack", a.in, "the packed PEM")->required();
@@ -50,6 +55,7 @@ int RunPackCommand() {
     pipeline::PackOptions opt;
     opt.codec = base::ByteCodecNamed(a.codec);
     opt.maxError = a.maxError;
+    opt.ratio = a.ratio;
     const pipeline::PackStats s = pipeline::PackPem(a.in, a.out, opt);
     if (!a.quiet)
         std::printf(
