@@ -8,6 +8,7 @@
 #include <cstring>
 #include <memory>
 #include <stdexcept>
+#include <string>
 
 namespace pem::base {
 namespace {
@@ -80,7 +81,7 @@ void Silence(opj_codec_t* codec) {
 
 }  // namespace
 
-std::vector<uint8_t> EncodeJ2k(const Image8Planes& img, double ratio) {
+std::vector<uint8_t> EncodeJ2k(const Image8Planes& img, double ratio, J2kWavelet wavelet) {
     if (img.width < 1 || img.height < 1 || img.channels < 1 || img.channels > 4 ||
         img.data.size() != static_cast<size_t>(img.width) * img.height * img.channels)
         throw std::runtime_error("j2k: bad image size");
@@ -106,8 +107,8 @@ std::vector<uint8_t> EncodeJ2k(const Image8Planes& img, double ratio) {
                 img.data[i * static_cast<size_t>(img.channels) + static_cast<size_t>(c)];
     opj_cparameters_t p;
     opj_set_default_encoder_parameters(&p);
-    p.irreversible = 0;
-    p.tcp_mct = 0;  // no colour transform: premultiplied RGBA
+    p.irreversible = ratio > 1.0 && wavelet == J2kWavelet::Irreversible97 ? 1 : 0;
+    p.tcp_mct = img.channels >= 3 ? 1 : 0;  // RCT (5/3) or ICT (9/7) of the first three channels
     int res = 1;
     while (res < 6 && (1 << res) <= std::min(img.width, img.height)) ++res;
     p.numresolution = res;
@@ -126,7 +127,7 @@ std::vector<uint8_t> EncodeJ2k(const Image8Planes& img, double ratio) {
     return out.bytes;
 }
 
-Image8Planes DecodeJ2k(std::span<const uint8_t> codestream) {
+Image8Planes DecodeJ2k(std::span<const uint8_t> codestream, int width, int height, int channels) {
     Buffer in{std::vector<uint8_t>(codestream.begin(), codestream.end()), 0};
     Owned o;
     o.codec = opj_create_decompress(OPJ_CODEC_J2K);
@@ -135,8 +136,15 @@ Image8Planes DecodeJ2k(std::span<const uint8_t> codestream) {
     opj_set_default_decoder_parameters(&p);
     if (!opj_setup_decoder(o.codec, &p)) throw std::runtime_error("j2k: cannot set up");
     o.stream = StreamOver(&in, true);
-    if (!opj_read_header(o.stream, o.codec, &o.image) || !opj_decode(o.codec, o.stream, o.image) ||
-        !opj_end_decompress(o.codec, o.stream))
+    if (!opj_read_header(o.stream, o.codec, &o.image))
+        throw std::runtime_error("j2k: corrupt codestream header");
+    if (static_cast<int>(o.image->numcomps) != channels || o.image->x0 != 0 || o.image->y0 != 0 ||
+        o.image->x1 != static_cast<OPJ_UINT32>(width) ||
+        o.image->y1 != static_cast<OPJ_UINT32>(height))
+        throw std::runtime_error("j2k: the codestream is not a " + std::to_string(width) + " x " +
+                                 std::to_string(height) + " image of " + std::to_string(channels) +
+                                 " channels");
+    if (!opj_decode(o.codec, o.stream, o.image) || !opj_end_decompress(o.codec, o.stream))
         throw std::runtime_error("j2k: corrupt codestream");
     Image8Planes img;
     img.channels = static_cast<int>(o.image->numcomps);

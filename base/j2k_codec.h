@@ -15,12 +15,17 @@
 
 namespace pem::base {
 
+enum class J2kWavelet { Reversible53, Irreversible97 };
+
 struct Image8Planes {
     int width = 0, height = 0, channels = 0;
     std::vector<uint8_t> data;  // interleaved: (y * width + x) * channels + c
 };
 
-std::vector<uint8_t> EncodeJ2k(const Image8Planes& image, double ratio);
-Image8Planes DecodeJ2k(std::span<const uint8_t> codestream);
+// ratio <= 1: lossless (always 5/3).
+std::vector<uint8_t> EncodeJ2k(const Image8Planes& image, double ratio, J2kWavelet wavelet);
+// The image of a codestream that must be width × height with `channels` channels (checked before
+// anything is decoded, so a hostile header cannot make it allocate more).
+Image8Planes DecodeJ2k(std::span<const uint8_t> codestream, int width, int height, int channels);
 
 }  // namespace pem::base

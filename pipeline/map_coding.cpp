@@ -138,8 +138,10 @@ size_t PredictedBytes(int width, const std::vector<std::vector<uint8_t>>& transf
     return total;
 }
 
-MapCode EncodeMap(const raster::Texture& texture, const raster::Texture* previous, int maxError,
-                  double ratio) {
+MapCode EncodeMap(const raster::Texture& texture, const raster::Texture* previous,
+                  const MapCodeOptions& options) {
+    const int maxError = options.maxError;
+    const double ratio = options.ratio;
     const int levels = texture.NumLevels();
     if (!UsablePrevious(previous, texture.width, levels)) previous = nullptr;
     const Quantizer quant{maxError};
@@ -156,8 +158,10 @@ MapCode EncodeMap(const raster::Texture& texture, const raster::Texture* previou
         if (ratio > 0.0 && n >= kMinTransformSize) {
             // The level by the transform codec (the finest level's decoded bytes: the base of
             // the decimated predictor below).
-            code.transformed.back() = base::EncodeJ2k({n, 6 * n, 4, original}, ratio);
-            recon = base::DecodeJ2k(code.transformed.back()).data;
+            const double levelRatio = l == 0 || ratio <= 1.0 ? ratio : 2.0 * ratio;
+            code.transformed.back() =
+                base::EncodeJ2k({n, 6 * n, 4, original}, levelRatio, options.wavelet);
+            recon = base::DecodeJ2k(code.transformed.back(), n, 6 * n, 4).data;
             code.predictors.insert(code.predictors.end(), 4, 0);
             if (l == 0) decimated = recon;
             continue;
@@ -204,7 +208,7 @@ raster::Texture DecodeMap(const MapCode& code, int width, int levels,
         const Bases bases = BasesAt(l, previous, &decimated);
         Level recon(LevelBytes(width, l));
         if (!code.transformed[static_cast<size_t>(l)].empty()) {
-            recon = base::DecodeJ2k(code.transformed[static_cast<size_t>(l)]).data;
+            recon = base::DecodeJ2k(code.transformed[static_cast<size_t>(l)], n, 6 * n, 4).data;
             if (recon.size() != LevelBytes(width, l))
                 throw std::runtime_error("a transformed level of the map has another size");
             if (l == 0) decimated = recon;

@@ -192,11 +192,11 @@ bool IsPemPack(const std::string& path) {
 }
 
 PackStats PackPem(const std::string& pemDir, const std::string& packFile, const PackOptions& opt) {
-    if (!(opt.ratio == 0.0 || (opt.ratio >= 1.0 && opt.ratio <= 1000.0)))
-        throw base::InputError("--ratio " + std::to_string(opt.ratio),
+    if (!(opt.map.ratio == 0.0 || (opt.map.ratio >= 1.0 && opt.map.ratio <= 1000.0)))
+        throw base::InputError("--ratio " + std::to_string(opt.map.ratio),
                                "must be 0 or lie in [1, 1000]");
-    if (opt.maxError < 0 || opt.maxError > kMaxMapError)
-        throw base::InputError("--max-error " + std::to_string(opt.maxError),
+    if (opt.map.maxError < 0 || opt.map.maxError > kMaxMapError)
+        throw base::InputError("--max-error " + std::to_string(opt.map.maxError),
                                "must lie in [0, " + std::to_string(kMaxMapError) + "]");
     const PemManifest m = ReadPemManifest(pemDir);
     const std::string packDir = fs::absolute(packFile).parent_path().string();
@@ -219,9 +219,9 @@ PackStats PackPem(const std::string& pemDir, const std::string& packFile, const 
                 auto prev = last.find({g, name});
                 const raster::Texture* previous =
                     prev == last.end() ? nullptr : &prev->second.second;
-                const MapCode code = EncodeMap(tex, previous, opt.maxError, opt.ratio);
+                const MapCode code = EncodeMap(tex, previous, opt.map);
                 raster::Texture decoded =
-                    DecodeMap(code, tex.width, tex.NumLevels(), previous, opt.maxError);
+                    DecodeMap(code, tex.width, tex.NumLevels(), previous, opt.map.maxError);
                 Bytes raw = code.predictors;
                 raw.insert(raw.end(), code.residuals.begin(), code.residuals.end());
                 json entry = b.Add(raw);
@@ -258,8 +258,9 @@ PackStats PackPem(const std::string& pemDir, const std::string& packFile, const 
     b.header = {{"format", kFormat},
                 {"version", kVersion},
                 {"codec", base::ByteCodecName(opt.codec)},
-                {"max_error", opt.maxError},
-                {"ratio", opt.ratio},
+                {"max_error", opt.map.maxError},
+                {"ratio", opt.map.ratio},
+                {"wavelet", opt.map.wavelet == base::J2kWavelet::Reversible53 ? "5/3" : "9/7"},
                 {"manifest", PemManifestText(RelocatedPemManifest(m, packDir))},
                 {"payload_bytes", b.payload.size()},
                 {"payload_sha256", base::Sha256Hex(b.payload.data(), b.payload.size())},
@@ -337,7 +338,8 @@ void UnpackPem(const std::string& packFile, const std::string& outDir, int threa
         throw base::InputError(outDir, "exists: unpack makes a new directory");
     // Step 1: everything into a temporary sibling directory.
     const std::string tmp = base::TemporaryPath(fs::path(outDir).lexically_normal().string());
-    fs::create_directories(tmp);
+    if (!fs::create_directories(tmp, ec) || ec)
+        throw base::InputError(outDir, "cannot create the directory: " + ec.message());
     try {
         const PemManifest m = RelocatedPemManifest(p.manifest, outDir);
         base::WriteTextAtomic(tmp + "/" + kManifestJson, PemManifestText(m));
@@ -352,6 +354,9 @@ void UnpackPem(const std::string& packFile, const std::string& outDir, int threa
         }
         // Step 2: the directory appears whole.
         fs::rename(tmp, outDir);
+    } catch (const fs::filesystem_error& e) {
+        fs::remove_all(tmp, ec);
+        throw base::InputError(outDir, e.code().message());
     } catch (...) {
         fs::remove_all(tmp, ec);
         throw;

@@ -27,6 +27,7 @@
 #include <tuple>
 
 #include "base/byte_codec.h"
+#include "pipeline/map_coding.h"
 #include "pipeline/pem_manifest.h"
 #include "raster/frame.h"
 
@@ -34,8 +35,7 @@ namespace pem::pipeline {
 
 struct PackOptions {
     base::ByteCodec codec = base::ByteCodec::Zstd;
-    int maxError = 0;  // every decoded byte within maxError of the directory's (0: lossless)
-    double ratio = 0.0;  // ≥ 1: levels with faces ≥ 8 wide by JPEG 2000 at this ratio (1: lossless)
+    MapCodeOptions map;  // max error, JPEG 2000 ratio and wavelet (map_coding.h)
 };
 
 // What packing measured: the pack against the directory's map files.

@@ -13,7 +13,7 @@ root=$(pwd)
 seconds=${1:-20}
 shift || true
 harnesses=("$@")
-[ ${#harnesses[@]} -gt 0 ] || harnesses=(case gltf exr manifest keys png)
+[ ${#harnesses[@]} -gt 0 ] || harnesses=(case gltf exr manifest keys png pack)
 out=$root/build-fuzz
 
 # Step 1: the build.
@@ -43,6 +43,11 @@ seed gltf "$root"/data/scenes/*.gltf "$root"/tests/data/bad_scenes/*.gltf \
 seed exr "$root"/data/env/*.exr $(find "$out/seedbake" -name '*.exr' -size -64k | head -20)
 seed manifest $(find "$out/seedbake" -name '*.json')
 seed png $(find "$out/seedbake" "$root/tests/data" -name '*.png' -size -64k | head -20)
+if [ ! -f "$out/seedbake/lossy.pempack" ]; then
+  "$out/bin/pemref" pack "$out/seedbake/pem" -o "$out/seedbake/lossless.pempack" --quiet
+  "$out/bin/pemref" pack "$out/seedbake/pem" -o "$out/seedbake/lossy.pempack" --max-error 3 --quiet
+fi
+seed pack "$out/seedbake/lossless.pempack" "$out/seedbake/lossy.pempack"
 mkdir -p "$out/corpus/keys" && printf 'hjkl+-ud12345m[]rq\033[A\033[D' > "$out/corpus/keys/seed"
 
 # Step 3: the regressions, then the runs.

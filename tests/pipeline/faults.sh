@@ -20,7 +20,8 @@ small=(--views circle:2:10 --size 64x48 --spp 1)
 cat > "$work/case.json" <<'JSON'
 {"width": 16, "height": 16, "clear": [10, 20, 30, 255], "passes": []}
 JSON
-chmod -R a+rX "$work/ok" "$work/case.json"
+"$pemref" pack "$work/ok/pem" -o "$work/ok.pempack" --quiet || { echo "FAIL: setup pack"; exit 1; }
+chmod -R a+rX "$work/ok" "$work/case.json" "$work/ok.pempack"
 
 # The commands that write, each into OUT (a directory that must stay as it was).
 commands() {
@@ -32,6 +33,8 @@ commands() {
   echo "render $work/ok/pem --view sample:0 -o $out/f.exr --quiet"
   echo "raster $work/case.json -o $out/c.png --matrix $out/c.mtx"
   echo "stability --json $out/s.json"
+  echo "pack $work/ok/pem -o $out/p.pempack --quiet"
+  echo "unpack $work/ok.pempack -o $out/u"
 }
 
 # Runs one command (as `who`: root or nobody) with an optional file-size limit in KiB; checks

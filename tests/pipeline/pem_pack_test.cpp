@@ -14,6 +14,7 @@
 
 #include "base/atomic_file.h"
 #include "base/byte_codec.h"
+#include "base/j2k_codec.h"
 #include "base/input_error.h"
 #include "infer/cube_map.h"
 #include "pipeline/map_coding.h"
@@ -56,7 +57,7 @@ int LargestDifference(const raster::Texture& a, const raster::Texture& b) {
 TEST(MapCoding, LosslessGivesBackEveryByte) {
     const raster::Texture a = Picture(16, 5, 1), b = Picture(16, 5, 2, 1);
     for (const raster::Texture* previous : {static_cast<const raster::Texture*>(nullptr), &a}) {
-        const MapCode code = EncodeMap(b, previous, 0);
+        const MapCode code = EncodeMap(b, previous, {});
         EXPECT_EQ(code.residuals.size(), ResidualBytes(16, 5));
         const raster::Texture d = DecodeMap(code, 16, 5, previous, 0);
         EXPECT_EQ(d.levels, b.levels);
@@ -70,7 +71,7 @@ TEST(MapCoding, LossyStaysWithinTheError) {
     const raster::Texture a = Picture(32, 6, 3), b = Picture(32, 6, 4, 2);
     size_t last = SIZE_MAX;
     for (int e : {0, 1, 3, 8, kMaxMapError}) {
-        const MapCode code = EncodeMap(b, &a, e);
+        const MapCode code = EncodeMap(b, &a, {e, 0.0});
         const raster::Texture d = DecodeMap(code, 32, 6, &a, e);
         EXPECT_LE(LargestDifference(d, b), e) << "max error " << e;
         const size_t bytes = base::Compress(base::ByteCodec::Zstd, code.residuals).size();
@@ -82,36 +83,44 @@ TEST(MapCoding, LossyStaysWithinTheError) {
 // The neighbour's copy is used: a map equal to its neighbour codes to almost nothing.
 TEST(MapCoding, PredictsFromTheNeighbourSample) {
     const raster::Texture a = Picture(32, 6, 5);
-    const MapCode alone = EncodeMap(a, nullptr, 0), fromNeighbour = EncodeMap(a, &a, 0);
+    const MapCode alone = EncodeMap(a, nullptr, {}), fromNeighbour = EncodeMap(a, &a, {});
     const size_t bytesAlone = base::Compress(base::ByteCodec::Zstd, alone.residuals).size();
     const size_t bytesFrom = base::Compress(base::ByteCodec::Zstd, fromNeighbour.residuals).size();
     EXPECT_LT(bytesFrom * 20, bytesAlone);
 }
 
 // JPEG 2000 levels: ratio 1 gives back every byte; ratio 4 stays close to the original (PSNR of
-// the decoded levels against it) and codes the transformed levels in about a quarter.
+// the decoded levels against it) with either wavelet and codes the finest level in about a
+// quarter, the next in about an eighth.
 TEST(MapCoding, TransformCodedLevels) {
     const raster::Texture a = Picture(32, 6, 9);
-    const MapCode lossless = EncodeMap(a, nullptr, 0, 1.0);
+    const MapCode lossless = EncodeMap(a, nullptr, {0, 1.0});
     ASSERT_EQ(lossless.transformed.size(), 6u);
     EXPECT_FALSE(lossless.transformed[2].empty());  // 8 wide
     EXPECT_TRUE(lossless.transformed[3].empty());   // 4 wide: predicted
     EXPECT_EQ(DecodeMap(lossless, 32, 6, nullptr, 0).levels, a.levels);
-    const MapCode lossy = EncodeMap(a, nullptr, 0, 4.0);
-    const raster::Texture d = DecodeMap(lossy, 32, 6, nullptr, 0);
-    EXPECT_NE(d.levels[0], a.levels[0]);
-    double se = 0;
-    for (size_t k = 0; k < a.levels[0].size(); ++k)
-        se += std::pow(double(d.levels[0][k]) - double(a.levels[0][k]), 2);
-    const double psnr = 10 * std::log10(255.0 * 255.0 * double(a.levels[0].size()) / se);
-    EXPECT_GT(psnr, 20.0);
-    EXPECT_LT(lossy.transformed[0].size(), a.levels[0].size() / 3);
-    EXPECT_EQ(d.levels[3], a.levels[3]);  // the predicted levels stay lossless at max error 0
+    // A codestream of another size is refused before it is decoded.
+    EXPECT_EQ(base::DecodeJ2k(lossless.transformed[0], 32, 192, 4).width, 32);
+    EXPECT_THROW(base::DecodeJ2k(lossless.transformed[0], 16, 96, 4), std::runtime_error);
+    EXPECT_THROW(base::DecodeJ2k(lossless.transformed[0], 32, 192, 3), std::runtime_error);
+    for (base::J2kWavelet w : {base::J2kWavelet::Reversible53, base::J2kWavelet::Irreversible97}) {
+        const MapCode lossy = EncodeMap(a, nullptr, {0, 4.0, w});
+        const raster::Texture d = DecodeMap(lossy, 32, 6, nullptr, 0);
+        EXPECT_NE(d.levels[0], a.levels[0]);
+        double se = 0;
+        for (size_t k = 0; k < a.levels[0].size(); ++k)
+            se += std::pow(double(d.levels[0][k]) - double(a.levels[0][k]), 2);
+        const double psnr = 10 * std::log10(255.0 * 255.0 * double(a.levels[0].size()) / se);
+        EXPECT_GT(psnr, 20.0);
+        EXPECT_LT(lossy.transformed[0].size(), a.levels[0].size() / 3);
+        EXPECT_LT(lossy.transformed[1].size(), a.levels[1].size() / 6);  // twice the ratio
+        EXPECT_EQ(d.levels[3], a.levels[3]);  // the predicted levels stay lossless at error 0
+    }
 }
 
 TEST(MapCoding, RefusesACodeOfAnotherSize) {
     const raster::Texture a = Picture(8, 4, 6);
-    MapCode code = EncodeMap(a, nullptr, 0);
+    MapCode code = EncodeMap(a, nullptr, {});
     EXPECT_THROW(DecodeMap(code, 16, 4, nullptr, 0), std::runtime_error);
     code.predictors[0] = 2;  // "from the neighbour" without one
     EXPECT_THROW(DecodeMap(code, 8, 4, nullptr, 0), std::runtime_error);
@@ -153,14 +162,14 @@ TEST(PemPack, LosslessRendersAndUnpacksAsTheDirectory) {
     const PemManifest m = MakeNoisyPemDir(dir);
     const std::string pack = (dir / "p.pempack").string();
     for (base::ByteCodec codec : {base::ByteCodec::Zstd, base::ByteCodec::Xz}) {
-        const PackStats s = PackPem(m.dir, pack, {codec, 0, 0.0});
+        const PackStats s = PackPem(m.dir, pack, {codec, {}});
         EXPECT_EQ(s.maps, 2);
         EXPECT_EQ(s.maxError, 0);
         EXPECT_TRUE(IsPemPack(pack));
         EXPECT_EQ(RenderPem(pack), RenderPem(m.dir));
     }
     // JPEG 2000 lossless (ratio 1) renders the same frame too.
-    EXPECT_EQ(PackPem(m.dir, pack, {base::ByteCodec::Zstd, 0, 1.0}).maxError, 0);
+    EXPECT_EQ(PackPem(m.dir, pack, {base::ByteCodec::Zstd, {0, 1.0}}).maxError, 0);
     EXPECT_EQ(RenderPem(pack), RenderPem(m.dir));
     // Unpacked: the same maps (as 8-bit copies), the same other files, a manifest that finds the
     // scene from the new place.
@@ -177,7 +186,7 @@ TEST(PemPack, LossyKeepsTheBound) {
     const fs::path dir = FreshDir("pem_pack_lossy");
     const PemManifest m = MakeNoisyPemDir(dir);
     const std::string pack = (dir / "p.pempack").string();
-    const PackStats s = PackPem(m.dir, pack, {base::ByteCodec::Zstd, 4, 0.0});
+    const PackStats s = PackPem(m.dir, pack, {base::ByteCodec::Zstd, {4, 0.0}});
     EXPECT_LE(s.maxError, 4);
     EXPECT_GT(s.maxError, 0);
     const PemPack p = ReadPemPack(pack);

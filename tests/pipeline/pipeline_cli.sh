@@ -66,10 +66,37 @@ cp -r "$work/a" "$work/copied"
     -o "$work/copied/moved.png")
 "$pemref" render "$work/a/pem" --view sample:1 --method pem --threads 2 --quiet -o "$work/a/here.png"
 cmp "$work/copied/moved.png" "$work/a/here.png" || { echo "FAIL: a copied bake renders differently"; exit 1; }
+# Packed PEMs: a lossless pack renders the same bytes as its directory (hybrid and PEM mode), also
+# from another working directory; unpacked, the same again; a lossy pack renders; a pack is not a directory to
+# unpack into.
+"$pemref" pack "$work/a/pem" -o "$work/a/pem.pempack" --quiet
+"$pemref" pack "$work/a/pem" -o "$work/a/lossy.pempack" --max-error 31 --ratio 32 --quiet
+"$pemref" unpack "$work/a/pem.pempack" -o "$work/a/unpacked"
+for src in "$work/a/pem" "$work/a/pem.pempack" "$work/a/unpacked" "$work/a/lossy.pempack"; do
+  for m in hybrid pem; do
+    "$pemref" render "$src" --view orbit:5:10:1 --method "$m" --threads 2 --quiet \
+        -o "$work/a/packed_${m}_$(basename "$src").png"
+  done
+done
+for m in hybrid pem; do
+  for b in pem.pempack unpacked; do
+    cmp "$work/a/packed_${m}_pem.png" "$work/a/packed_${m}_$b.png" ||
+      { echo "FAIL: $m from $b differs from the directory's frame"; exit 1; }
+  done
+  cmp -s "$work/a/packed_${m}_pem.png" "$work/a/packed_${m}_lossy.pempack.png" &&
+    { echo "FAIL: the lossy pack's $m frame equals the directory's"; exit 1; }
+done
+(cd / && "$pemref" render "$work/copied/../a/pem.pempack" --view sample:1 --method pem --threads 2 \
+    --quiet -o "$work/a/pack_here.png")
+cmp "$work/a/pack_here.png" "$work/a/here.png" || { echo "FAIL: the pack renders differently"; exit 1; }
+if "$pemref" unpack "$work/a/pem.pempack" -o "$work/a/unpacked" 2>"$work/a/err.txt"; then
+  echo "FAIL: unpack into an existing directory"; exit 1
+fi
+grep -q "exists" "$work/a/err.txt" || { echo "FAIL: unpack error: $(cat "$work/a/err.txt")"; exit 1; }
 # Step 2: the mirror sphere.
 "$pemref" bake "$data/scenes/mirror_sphere.gltf" --out "$work/s" --views circle:2:10 \
     --size 96x72 --spp 2 --res 16 --threads 2 --quiet
-"$pemref" report "$work/s" --threads 2 --reference-spp 2 --no-stability --quiet
+"$pemref" report "$work/s" --threads 2 --reference-spp 2 --no-stability --no-packs --quiet
 # Anisotropic maps: inferred for and drawn with GL_TEXTURE_MAX_ANISOTROPY 16, kept in the manifest;
 # a value outside GL's range is refused.
 "$pemref" infer "$work/s/trace" --out "$work/s/pem16" --res 16 --anisotropy 16 --threads 2 --quiet
@@ -115,7 +142,7 @@ cmp "$work/g1/golden.json" "$work/g2/golden.json" ||
 "$pemref" bake "$data/scenes/pem_mirror_teapot.gltf" --out "$work/t" --views circle:2:10 \
     --size 128x96 --spp 2 --res 32 --threads 2 --quiet
 "$pemref" render "$work/t/pem" --view sample:1 --method pem --threads 2 --quiet -o "$work/t/pem.png"
-"$pemref" report "$work/t" --threads 2 --reference-spp 2 --no-stability --quiet
+"$pemref" report "$work/t" --threads 2 --reference-spp 2 --no-stability --no-packs --quiet
 
 "$py" - "$work" <<'PY'
 import json, os, sys
@@ -163,6 +190,11 @@ if not any(b["position"] == "10° above" for b in r["budget"]): fail("no off-sam
 if "<rect" not in open(f"{w}/a/budget.svg").read(): fail("budget.svg has no bars")
 svg = open(f"{w}/a/report.svg").read()
 if svg.count('class="marker"') != 27: fail("report.svg: one marker per result expected")
+packs = r["packs"]
+if [p["setting"] for p in packs][:2] != ["lossless", "--max-error 4"]: fail("report: pack settings")
+if any(f["delta"] != 0 for f in packs[0]["frames"]): fail("report: the lossless pack changes a frame")
+if not all(p["vsExr"] > 1 for p in packs): fail("report: a pack larger than the EXR maps")
+if "<polyline" not in open(f"{w}/a/packs.svg").read(): fail("packs.svg has no curve")
 s = json.load(open(f"{w}/s/report.json"))
 decisions = " | ".join(x["decision"] for x in s["leftOut"])
 if "refraction (T) term" not in decisions: fail("mirror sphere: refraction term not left out: " + decisions)

@@ -295,6 +295,39 @@ TEST(ReportWriter, WritesFourParseableFiles) {
     fs::remove_all(dir);
 }
 
+// Packed PEMs: a table row per setting with the mean change per method, the JSON rows, and
+// packs.svg with a marker per setting on its coding's curve.
+TEST(ReportWriter, PackedPemsTableJsonAndCurve) {
+    const fs::path dir = MakeTempDir();
+    ReportData data = SampleData();
+    PackRow lossless{"lossless", 1000, 9.0, 1.2, 2.0, 0, {}};
+    PackRow lossy{"--max-error 31 --ratio 16", 200, 45, 6.0, 3.0, 255, {}};
+    for (const char* position : {"on circle", "between samples"}) {
+        lossless.deltas.push_back({"hybrid", position, 20.0, 0.0});
+        lossless.deltas.push_back({"layered PEM", position, 18.0, 0.0});
+        lossy.deltas.push_back({"hybrid", position, 19.5, -0.5});
+        lossy.deltas.push_back(
+            {"layered PEM", position, 17.0, std::string(position) == "on circle" ? -1.0 : -0.5});
+    }
+    data.packs = {lossless, lossy};
+    WriteReport(data, dir.string());
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 5);
+    const std::string md = ReadAll(dir / "report.md");
+    EXPECT_NE(
+        md.find("| `--max-error 31 --ratio 16` | 200 | 45.0:1 | 6.0:1 | 255 | 3.0 | -0.50 dB | "
+                "-0.50 dB | -0.75 dB | n/a |"),
+        std::string::npos)
+        << md;
+    const nlohmann::json j = nlohmann::json::parse(ReadAll(dir / "report.json"));
+    ASSERT_EQ(j.at("packs").size(), 2u);
+    EXPECT_EQ(j.at("packs")[1].at("vsPng"), 6.0);
+    EXPECT_EQ(j.at("packs")[1].at("frames").size(), 4u);
+    const std::string svg = ReadAll(dir / "packs.svg");
+    EXPECT_EQ(Count(svg, "<polyline"), 2u);
+    EXPECT_EQ(Count(svg, "<circle"), 4u);  // a marker per setting and two legend entries
+    fs::remove_all(dir);
+}
+
 TEST(ReportWriter, SortsByMethodAppearanceThenNaturalSetting) {
     const std::vector<MethodResult> sorted = SortedResults(SampleData().results);
     std::vector<std::string> order;

@@ -69,6 +69,7 @@ int RunDemoCommand() {
     std::printf(
         "\npemref demo done in %.0f s. Outputs under %s/:\n"
         "  report.md, report.svg, report.json   error against run time, left-out work, stability\n"
+        "  budget.svg, packs.svg                the error budget; packed PEMs' size against PSNR\n"
         "  views/<position>_<method>.png        the frames compared (reference = 6x6 ray traced)\n"
         "  trace/                               ray-traced images, layers, trace.json\n"
         "  pem/                                 the inferred maps (EXR + 8-bit PNG), infer.json\n"

@@ -13,7 +13,7 @@ namespace pem::cli {
 namespace {
 
 struct PackArgs {
-    std::string in, out, codec = "zstd";
+    std::string in, out, codec = "zstd", wavelet = "97";
     int maxError = 0, threads = 1;
     double ratio = 0.0;
     bool quiet = false;
@@ -43,6 +43,10 @@ void AddPackCommands(CLI::App& app) {
                      "levels of faces >= 8 wide by JPEG 2000 at this compression ratio (0: "
                      "predictive; 1: JPEG 2000 lossless)")
         ->check(CLI::Range(0.0, 1000.0));
+    pack->add_option("--wavelet", a.wavelet,
+                     "JPEG 2000 wavelet of --ratio > 1: 97 (irreversible, smaller) or 53 "
+                     "(integer decoding)")
+        ->check(CLI::IsMember({"97", "53"}));
     pack->add_flag("--quiet", a.quiet, "no summary line");
     CLI::App* unpack = app.add_subcommand("unpack", "a packed PEM as a PEM directory again");
     unpack->add_option("pack", a.in, "the packed PEM")->required();
@@ -54,8 +58,10 @@ int RunPackCommand() {
     const PackArgs& a = Args();
     pipeline::PackOptions opt;
     opt.codec = base::ByteCodecNamed(a.codec);
-    opt.maxError = a.maxError;
-    opt.ratio = a.ratio;
+    opt.map.maxError = a.maxError;
+    opt.map.ratio = a.ratio;
+    opt.map.wavelet =
+        a.wavelet == "53" ? base::J2kWavelet::Reversible53 : base::J2kWavelet::Irreversible97;
     const pipeline::PackStats s = pipeline::PackPem(a.in, a.out, opt);
     if (!a.quiet)
         std::printf(

@@ -40,6 +40,9 @@ void AddReportCommand(CLI::App& app) {
     sub->add_flag(
         "--no-stability", [&a](int64_t) { a.job.stability = false; },
         "leave out the stability suite");
+    sub->add_flag(
+        "--no-packs", [&a](int64_t) { a.job.packs = false; },
+        "leave out the packed PEMs' rate-distortion table");
     sub->add_flag("--quiet", a.quiet, "no progress lines");
 }
 

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
 // cmd_report.h — `pemref report`: error against run time for every method on a bake directory
 // (viewer_tty/report/report_job.h).
-//   pemref report DIR [--reference-spp K] [--threads N] [--no-stability] [--quiet]
-// Outputs: DIR/report.md, report.svg, report.json and DIR/views/*.png.
+//   pemref report DIR [--reference-spp K] [--threads N] [--no-stability] [--no-packs] [--quiet]
+// Outputs: DIR/report.md, report.svg, report.json, budget.svg, packs.svg and DIR/views/*.png.
 #pragma once
 
 #include <CLI/CLI.hpp>

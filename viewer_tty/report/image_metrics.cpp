@@ -16,6 +16,15 @@
 
 namespace pem::report {
 
+MetricImage ToMetric(const trace::FloatImage& img) {
+    MetricImage m{img.width, img.height, {}};
+    m.rgb.reserve(static_cast<size_t>(img.width) * static_cast<size_t>(img.height) * 3);
+    for (size_t p = 0; p < static_cast<size_t>(img.width) * static_cast<size_t>(img.height); ++p)
+        for (size_t c = 0; c < 3; ++c)
+            m.rgb.push_back(img.data[p * static_cast<size_t>(img.channels) + c]);
+    return m;
+}
+
 namespace {
 
 using Plane = std::vector<double>;

@@ -22,6 +22,8 @@
 #include <iosfwd>
 #include <vector>
 
+#include "trace/image.h"
+
 namespace pem::report {
 
 // A linear-radiance RGB image: rows top-down, 3 floats per pixel (rgb.size() == 3·width·height).
@@ -30,6 +32,9 @@ struct MetricImage {
     std::vector<float> rgb;
     bool operator==(const MetricImage&) const = default;
 };
+
+// The RGB of a frame (the first three channels).
+MetricImage ToMetric(const trace::FloatImage& image);
 
 // Scores of one comparison; with an empty selection (pixels == 0) rmse, psnr and ssim are NaN.
 struct ImageScores {

@@ -17,6 +17,7 @@
 #include "pipeline/pem_set.h"
 #include "pipeline/trace_manifest.h"
 #include "viewer_tty/report/error_budget.h"
+#include "viewer_tty/report/pack_study.h"
 #include "viewer_tty/report/report_writer.h"
 #include "viewer_tty/stability/stability.h"
 
@@ -35,15 +36,6 @@ std::string Machine() {
     uname(&u);
     return model + ", " + std::to_string(std::thread::hardware_concurrency()) +
            " hardware threads, " + u.sysname + " " + u.release;
-}
-
-MetricImage ToMetric(const trace::FloatImage& img) {
-    MetricImage m{img.width, img.height, {}};
-    m.rgb.reserve(static_cast<size_t>(img.width) * static_cast<size_t>(img.height) * 3);
-    for (size_t p = 0; p < static_cast<size_t>(img.width) * static_cast<size_t>(img.height); ++p)
-        for (size_t c = 0; c < 3; ++c)
-            m.rgb.push_back(img.data[p * static_cast<size_t>(img.channels) + c]);
-    return m;
 }
 
 void WriteFramePng(const std::string& path, const trace::FloatImage& image) {
@@ -100,10 +92,11 @@ std::vector<MethodRun> Methods(int threads) {
     return runs;
 }
 
-// Every method at one position against the reference, frames written to viewsDir.
-void MeasurePosition(runtime::Renderer& renderer, const Position& pos,
-                     const std::vector<MethodRun>& runs, const ReportJobOptions& o,
-                     const std::string& viewsDir, ReportData* data) {
+// Every method at one position against the reference, frames written to viewsDir; the reference
+// and its lens pixels returned (for the packed PEMs).
+PackReference MeasurePosition(runtime::Renderer& renderer, const Position& pos,
+                              const std::vector<MethodRun>& runs, const ReportJobOptions& o,
+                              const std::string& viewsDir, ReportData* data) {
     if (o.log) o.log(pos.name + ": reference");
     runtime::RenderSettings ref;
     ref.method = runtime::Method::RayTraced;
@@ -129,6 +122,7 @@ void MeasurePosition(runtime::Renderer& renderer, const Position& pos,
         data->results.push_back(r);
         WriteFramePng(viewsDir + "/" + pos.file + "_" + run.file + ".png", f.image);
     }
+    return {pos.name, pos.camera, refImage, mask};
 }
 
 // Mean build + solve seconds of a group's maps at one sample.
@@ -239,8 +233,10 @@ void RunReportJob(const ReportJobOptions& o) {
     const std::vector<Position> positions = Positions(*renderer);
     const std::string viewsDir = o.dir + "/views";
     std::filesystem::create_directories(viewsDir);
+    std::vector<PackReference> references;
     for (const Position& pos : positions)
-        MeasurePosition(*renderer, pos, Methods(o.threads), o, viewsDir, &data);
+        references.push_back(
+            MeasurePosition(*renderer, pos, Methods(o.threads), o, viewsDir, &data));
     // Step 2: what the pipeline and the run time left out.
     const std::string traceDir = pipeline::BakeTraceDir(o.dir);
     if (std::filesystem::exists(traceDir + "/" + pipeline::kTraceJson) &&
@@ -255,8 +251,10 @@ void RunReportJob(const ReportJobOptions& o) {
         for (const Position& p : positions) at.push_back({p.name, p.camera});
         data.budget = ErrorBudget(*renderer, pipeline::ReadTraceManifest(traceDir), at, o.threads);
     }
+    // Step 4: packed PEMs, their size against the frames drawn from them.
+    if (o.packs) data.packs = StudyPacks(pemDir, o.dir, references, data.results, o.threads, o.log);
     AddNotes(o.referenceSpp, &data);
-    // Step 4: the stability suite; the documents.
+    // Step 5: the stability suite; the documents.
     if (o.stability) AddStability(o, &data);
     WriteReport(data, o.dir);
 }

@@ -299,6 +299,51 @@ std::string MarkdownBudget(const std::vector<GroupBudget>& budget) {
     return md;
 }
 
+// ---- Packed PEMs -------------------------------------------------------------------------------
+
+// The change of a method's PSNR at a position ("" = the mean over positions).
+double PackDeltaOf(const PackRow& row, const std::string& method, const std::string& position) {
+    double sum = 0;
+    int n = 0;
+    for (const PackDelta& d : row.deltas)
+        if (d.method == method && (position.empty() || d.position == position)) sum += d.delta, ++n;
+    return n ? sum / n : std::numeric_limits<double>::quiet_NaN();
+}
+
+std::string MarkdownPacks(const std::vector<PackRow>& packs) {
+    if (packs.empty()) return "";
+    std::vector<std::string> positions;
+    for (const PackDelta& d : packs.front().deltas)
+        if (std::find(positions.begin(), positions.end(), d.position) == positions.end())
+            positions.push_back(d.position);
+    std::string md =
+        "\n## Packed PEMs\n\nThe PEM directory packed (`pemref pack`): bytes per viewpoint sample, "
+        "the ratio against the directory's float EXR and 8-bit PNG maps, the largest change of an "
+        "8-bit texel, and the change of the frames' PSNR (float, lens pixels) when drawn from the "
+        "pack instead of the directory (packs.svg).\n\n";
+    std::vector<std::string> names = {"setting", "bytes/sample", "vs EXR",
+                                      "vs PNG",  "max error",    "pack s"};
+    std::string align = "lrrrrr";
+    for (const std::string& p : positions) names.push_back("Δ hybrid " + p), align += 'r';
+    names.push_back("Δ layered PEM"), names.push_back("Δ single-layer PEM"), align += "rr";
+    md += HeaderRow(names, align);
+    for (const PackRow& r : packs) {
+        const std::string setting = std::string(1, '`').append(Cell(r.setting)).append("`");
+        std::vector<std::string> cells = {setting,
+                                          Num(r.bytesPerSample, "%.0f"),
+                                          Num(r.vsExr, "%.1f:1"),
+                                          Num(r.vsPng, "%.1f:1"),
+                                          std::to_string(r.maxError),
+                                          Num(r.packSeconds, "%.1f")};
+        for (const std::string& p : positions)
+            cells.push_back(Num(PackDeltaOf(r, "hybrid", p), "%+.2f dB"));
+        cells.push_back(Num(PackDeltaOf(r, "layered PEM", ""), "%+.2f dB"));
+        cells.push_back(Num(PackDeltaOf(r, "single-layer PEM", ""), "%+.2f dB"));
+        md += Row(cells);
+    }
+    return md;
+}
+
 // ---- Files -------------------------------------------------------------------------------------
 
 std::string JoinPath(const std::string& dir, const std::string& name) {
@@ -329,6 +374,7 @@ std::string ReportMarkdown(const ReportData& data) {
     // Step 2: the tables, then the notes.
     md += MarkdownResults(SortedResults(data.results));
     md += MarkdownBudget(data.budget);
+    md += MarkdownPacks(data.packs);
     md += MarkdownLeftOut(data.leftOut) + MarkdownStability(data.stability);
     if (!data.notes.empty()) {
         md += "\n## Notes\n\n";
@@ -413,6 +459,70 @@ std::string BudgetSvg(const ReportData& data) {
     return svg + "</svg>\n";
 }
 
+std::string PacksSvg(const ReportData& data) {
+    // Step 1: the axes: ratio to the PNG maps (log2, 1 to the largest), ΔPSNR of the hybrid
+    // frame at the first position (dB, from the lowest to +0.5).
+    const double left = 80, top = 50, w = 520, h = 300;
+    double maxRatio = 32, minDelta = -1.0;
+    std::string position;
+    for (const PackRow& r : data.packs) {
+        if (!r.deltas.empty() && position.empty()) position = r.deltas.front().position;
+        maxRatio = std::max(maxRatio, r.vsPng);
+        const double d = PackDeltaOf(r, "hybrid", position);
+        if (std::isfinite(d)) minDelta = std::min(minDelta, std::floor(d * 2.0) / 2.0);
+    }
+    const double xMax = std::ceil(std::log2(maxRatio)), yMax = 0.5;
+    auto X = [&](double ratio) { return left + std::log2(std::max(ratio, 1.0)) / xMax * w; };
+    auto Y = [&](double d) {
+        return top + (yMax - std::clamp(d, minDelta, yMax)) / (yMax - minDelta) * h;
+    };
+    std::string svg =
+        "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<svg "
+        "xmlns=\"http://www.w3.org/2000/svg\" width=\"" +
+        P(left + w + 200) + "\" height=\"" + P(top + h + 60) +
+        "\" font-family=\"sans-serif\" font-size=\"12\">\n<rect width=\"100%\" "
+        "height=\"100%\" fill=\"#fff\"/>\n";
+    svg += SvgText(10, 22,
+                   "Packed PEMs: hybrid frame's ΔPSNR (" + position + ") vs ratio to the PNG maps",
+                   "font-size=\"14\" font-weight=\"bold\"");
+    for (int e = 0; e <= xMax; ++e) {
+        svg += SvgLine(X(std::exp2(e)), top, X(std::exp2(e)), top + h, "stroke=\"#ddd\"");
+        svg += SvgText(X(std::exp2(e)), top + h + 16, Num(std::exp2(e), "%.0f") + ":1",
+                       "text-anchor=\"middle\" font-size=\"10\"");
+    }
+    for (double d = minDelta; d <= yMax + 1e-9; d += 0.5) {
+        svg +=
+            SvgLine(left, Y(d), left + w, Y(d), d == 0.0 ? "stroke=\"#888\"" : "stroke=\"#ddd\"");
+        svg += SvgText(left - 6, Y(d) + 4, Num(d, "%+.1f"), "text-anchor=\"end\" font-size=\"10\"");
+    }
+    svg += SvgLine(left, Y(-0.5), left + w, Y(-0.5), "stroke=\"#D55E00\" stroke-dasharray=\"4 3\"");
+    svg += SvgLine(X(20), top, X(20), top + h, "stroke=\"#D55E00\" stroke-dasharray=\"4 3\"");
+    svg += SvgText(left + w / 2, top + h + 40,
+                   "ratio to the PNG maps (log scale); dashed: 20:1, −0.5 dB",
+                   "text-anchor=\"middle\"");
+    // Step 2: one curve per coding: predictive (lossless, --max-error) and JPEG 2000 (--ratio).
+    const char* names[2] = {"predictive", "JPEG 2000"};
+    for (int k = 0; k < 2; ++k) {
+        std::vector<std::pair<double, double>> pts;
+        for (const PackRow& r : data.packs)
+            if ((r.setting.find("--ratio") != std::string::npos) == (k == 1))
+                pts.push_back({r.vsPng, PackDeltaOf(r, "hybrid", position)});
+        std::sort(pts.begin(), pts.end());
+        std::string line;
+        for (const auto& [ratio, d] : pts) {
+            if (!std::isfinite(d)) continue;
+            line += P(X(ratio)) + "," + P(Y(d)) + " ";
+            svg += "<circle cx=\"" + P(X(ratio)) + "\" cy=\"" + P(Y(d)) + "\" r=\"4\" fill=\"" +
+                   kColours[k] + "\"/>\n";
+        }
+        svg += "<polyline points=\"" + line + "\" fill=\"none\" stroke=\"" + kColours[k] + "\"/>\n";
+        svg += "<circle cx=\"" + P(left + w + 20) + "\" cy=\"" + P(top + 10 + 20 * k) +
+               "\" r=\"4.5\" fill=\"" + kColours[k] + "\"/>\n";
+        svg += SvgText(left + w + 32, top + 14 + 20 * k, names[k], "");
+    }
+    return svg + "</svg>\n";
+}
+
 std::string ReportJson(const ReportData& data) {
     using nlohmann::ordered_json;
     const auto scores = [](const ImageScores& s) {
@@ -463,15 +573,34 @@ std::string ReportJson(const ReportData& data) {
                                {"pixels", b.pixels},
                                {"stages", stages}});
     }
+    j["packs"] = ordered_json::array();
+    for (const PackRow& r : data.packs) {
+        ordered_json deltas = ordered_json::array();
+        for (const PackDelta& d : r.deltas)
+            deltas.push_back({{"method", d.method},
+                              {"position", d.position},
+                              {"psnr", d.psnr},
+                              {"delta", d.delta}});
+        j["packs"].push_back({{"setting", r.setting},
+                              {"bytesPerSample", r.bytesPerSample},
+                              {"vsExr", r.vsExr},
+                              {"vsPng", r.vsPng},
+                              {"maxError", r.maxError},
+                              {"packSeconds", r.packSeconds},
+                              {"frames", deltas}});
+    }
     j["notes"] = data.notes;
     return j.dump(2, ' ', false, ordered_json::error_handler_t::replace) + "\n";
 }
 
 void WriteReport(const ReportData& data, const std::string& dir) {
-    base::WriteTextsAtomic({{JoinPath(dir, "report.md"), ReportMarkdown(data)},
-                            {JoinPath(dir, "report.svg"), ReportSvg(data)},
-                            {JoinPath(dir, "report.json"), ReportJson(data)},
-                            {JoinPath(dir, "budget.svg"), BudgetSvg(data)}});
+    std::vector<std::pair<std::string, std::string>> files = {
+        {JoinPath(dir, "report.md"), ReportMarkdown(data)},
+        {JoinPath(dir, "report.svg"), ReportSvg(data)},
+        {JoinPath(dir, "report.json"), ReportJson(data)},
+        {JoinPath(dir, "budget.svg"), BudgetSvg(data)}};
+    if (!data.packs.empty()) files.push_back({JoinPath(dir, "packs.svg"), PacksSvg(data)});
+    base::WriteTextsAtomic(files);
 }
 
 }  // namespace pem::report

@@ -64,6 +64,19 @@ struct GroupBudget {
     std::vector<BudgetStage> stages;
 };
 
+// Packed PEMs (pack_study.h): one pack setting, its size and what it does to the frames.
+struct PackDelta {
+    std::string method, position;
+    double psnr = 0.0;   // float PSNR on the lens pixels, drawn from the pack
+    double delta = 0.0;  // psnr − the same frame's from the directory (dB)
+};
+struct PackRow {
+    std::string setting;  // the `pemref pack` options
+    double bytesPerSample = 0, vsExr = 0, vsPng = 0, packSeconds = 0;
+    int maxError = 0;  // largest |decoded − original| of an 8-bit texel
+    std::vector<PackDelta> deltas;
+};
+
 struct ReportData {
     std::string title, scene;
     std::string machine;
@@ -73,10 +86,12 @@ struct ReportData {
     std::vector<LeftOutRow> leftOut;
     std::vector<StabilityRow> stability;
     std::vector<GroupBudget> budget;
+    std::vector<PackRow> packs;
     std::vector<std::string> notes;
 };
 
-// Writes dir/report.md, dir/report.svg, dir/report.json and dir/budget.svg (dir must exist). Throws
+// Writes dir/report.md, dir/report.svg, dir/report.json, dir/budget.svg and, with pack rows,
+// dir/packs.svg (the rate–distortion curve; dir must exist). Throws
 // pem::base::InputError("<file>: <cause>") if a file cannot be written; if that happens before the
 // renames (the usual case: missing folder, full disk), none of the three is created or replaced.
 void WriteReport(const ReportData& data, const std::string& dir);
@@ -86,6 +101,8 @@ std::string ReportMarkdown(const ReportData& data);
 std::string ReportSvg(const ReportData& data);
 std::string ReportJson(const ReportData& data);
 std::string BudgetSvg(const ReportData& data);  // one bar per stage's cost, per group
+// ΔPSNR of the hybrid frame on the circle against the ratio to the PNG maps, one curve per coding.
+std::string PacksSvg(const ReportData& data);
 
 // Results in report order: by method (first appearance), then setting (natural order), stable.
 std::vector<MethodResult> SortedResults(const std::vector<MethodResult>& results);
