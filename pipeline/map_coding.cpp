@@ -190,7 +190,9 @@ MapCode EncodeMap(const raster::Texture& texture, const raster::Texture* previou
 
 raster::Texture DecodeMap(const MapCode& code, int width, int levels,
                           const raster::Texture* previous, int maxError) {
-    if (width < 1 || levels < 1 || levels > 16 ||
+    int chain = 1;  // the levels of a full MIP chain of this width
+    while ((width >> chain) > 0) ++chain;
+    if (width < 1 || levels < 1 || levels > chain ||
         code.predictors.size() != 4 * static_cast<size_t>(levels) ||
         code.transformed.size() != static_cast<size_t>(levels) ||
         code.residuals.size() != PredictedBytes(width, code.transformed))

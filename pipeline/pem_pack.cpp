@@ -4,8 +4,6 @@
 // Index: bytes of the file · packing · reading · unpacking.
 #include "pipeline/pem_pack.h"
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <cstring>
 #include <filesystem>
@@ -173,6 +171,25 @@ void CheckHeader(const RawPack& raw) {
         throw std::runtime_error("checksum mismatch: the payload is damaged");
 }
 
+// A map of the header that the manifest has: an inferred sample, an existing group, a name of
+// letters, digits and '_' (it becomes a file name).
+MapKey CheckedMapKey(const json& e, const PemManifest& m) {
+    const MapKey key{e.at("view").get<int>(), e.at("group").get<int>(),
+                     e.at("name").get<std::string>()};
+    const auto& [view, group, name] = key;
+    if (std::find(m.inferred.begin(), m.inferred.end(), view) == m.inferred.end())
+        throw std::runtime_error("a map of sample " + std::to_string(view) +
+                                 ", which the manifest does not list as inferred");
+    if (group < 0 || group >= static_cast<int>(m.groups.size()))
+        throw std::runtime_error("a map of lens group " + std::to_string(group) +
+                                 ", which the manifest does not have");
+    if (name.empty() || name.size() > 64 || !std::all_of(name.begin(), name.end(), [](char c) {
+            return (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_';
+        }))
+        throw std::runtime_error("a map named '" + name + "' (letters, digits and _ only)");
+    return key;
+}
+
 // A file path of the pack, safe to create under a directory: relative, no "..".
 std::string CheckedRelativePath(const std::string& rel) {
     const fs::path p = fs::path(rel).lexically_normal();
@@ -291,8 +308,7 @@ PemPack ReadPemPack(const std::string& packFile) {
         p.manifest = PemManifestFromText(h.at("manifest").get<std::string>(), dir, packFile);
         const raster::SamplerState sampler = p.manifest.hardware.Sampler();
         for (const json& e : h.at("maps")) {
-            const MapKey key{e.at("view").get<int>(), e.at("group").get<int>(),
-                             e.at("name").get<std::string>()};
+            const MapKey key = CheckedMapKey(e, p.manifest);
             const int size = e.at("size").get<int>(), levels = e.at("levels").get<int>();
             CheckMapSize(p.manifest, size, packFile);
             const int prevView = e.at("previous_view").get<int>();

@@ -100,17 +100,6 @@ std::string ReadFile(const fs::path& path) {
     return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
-// The one-line error a reader gives, or "" when it reads the file.
-template <class F>
-std::string ErrorOf(const F& read) {
-    try {
-        read();
-    } catch (const base::InputError& e) {
-        return e.what();
-    }
-    return "";
-}
-
 TEST(JsonValues, CameraRoundTripsBitForBit) {
     const raster::Camera c = OddCamera();
     const raster::Camera back = CameraFromJson(json::parse(CameraJson(c).dump()));

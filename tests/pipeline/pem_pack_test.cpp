@@ -9,13 +9,12 @@
 
 #include <cmath>
 #include <fstream>
-#include <functional>
 #include <random>
 
 #include "base/atomic_file.h"
 #include "base/byte_codec.h"
-#include "base/j2k_codec.h"
 #include "base/input_error.h"
+#include "base/j2k_codec.h"
 #include "infer/cube_map.h"
 #include "pipeline/map_coding.h"
 #include "pipeline/pem_set.h"
@@ -122,6 +121,7 @@ TEST(MapCoding, RefusesACodeOfAnotherSize) {
     const raster::Texture a = Picture(8, 4, 6);
     MapCode code = EncodeMap(a, nullptr, {});
     EXPECT_THROW(DecodeMap(code, 16, 4, nullptr, 0), std::runtime_error);
+    EXPECT_THROW(DecodeMap(code, 4, 4, nullptr, 0), std::runtime_error);  // 4 wide: 3 levels
     code.predictors[0] = 2;  // "from the neighbour" without one
     EXPECT_THROW(DecodeMap(code, 8, 4, nullptr, 0), std::runtime_error);
 }
@@ -196,15 +196,6 @@ TEST(PemPack, LossyKeepsTheBound) {
     fs::remove_all(dir);
 }
 
-std::string ErrorOf(const std::function<void()>& f) {
-    try {
-        f();
-    } catch (const base::InputError& e) {
-        return e.what();
-    }
-    return "";
-}
-
 TEST(PemPack, RefusesDamagedAndForeignFiles) {
     const fs::path dir = FreshDir("pem_pack_bad");
     const PemManifest m = MakeNoisyPemDir(dir);
@@ -228,6 +219,20 @@ TEST(PemPack, RefusesDamagedAndForeignFiles) {
     const std::string header = write("header", bytes.substr(0, 40));
     EXPECT_EQ(ErrorOf([&] { ReadPemPack(header); }).rfind(header + ": ", 0), 0u);
     EXPECT_EQ(ErrorOf([&] { OpenPemDirectory(damaged, 1); }).rfind(damaged + ": ", 0), 0u);
+    // A header (outside the payload's checksum) naming a map outside the directory.
+    const size_t headerLength =
+        static_cast<unsigned char>(bytes[8]) + 256 * static_cast<unsigned char>(bytes[9]);
+    std::string text = bytes.substr(16, headerLength);
+    const size_t at = text.find("\"name\":\"pem_distant\"");
+    ASSERT_NE(at, std::string::npos);
+    text.replace(at, 20, "\"name\":\"../../evil\"");
+    std::string hostile = bytes.substr(0, 8);
+    for (int b = 0; b < 8; ++b) hostile += static_cast<char>((text.size() >> (8 * b)) & 0xff);
+    const std::string evil = write("evil", hostile + text + bytes.substr(16 + headerLength));
+    EXPECT_NE(ErrorOf([&] { ReadPemPack(evil); }).find("letters, digits and _ only"),
+              std::string::npos);
+    EXPECT_THROW(UnpackPem(evil, (dir / "out").string(), 1), base::InputError);
+    EXPECT_FALSE(fs::exists(dir / "out"));
     // A failed unpack leaves nothing behind.
     EXPECT_THROW(UnpackPem(damaged, (dir / "out").string(), 1), base::InputError);
     EXPECT_FALSE(fs::exists(dir / "out"));

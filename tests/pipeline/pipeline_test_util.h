@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // pipeline_test_util.h — what the pipeline tests share: the bundled scenes, fresh temporary
-// directories, a directory tree's bytes.
+// directories, a directory tree's bytes, the error a reader gives.
 #pragma once
 
 #include <unistd.h>
@@ -9,6 +9,8 @@
 #include <fstream>
 #include <map>
 #include <string>
+
+#include "base/input_error.h"
 
 namespace pem::pipeline {
 
@@ -28,6 +30,17 @@ inline std::map<std::string, std::string> ReadTree(const fs::path& dir) {
             std::string(std::istreambuf_iterator<char>(f), {});
     }
     return files;
+}
+
+// The one-line error a reader gives, or "" when it reads the file.
+template <class F>
+std::string ErrorOf(const F& read) {
+    try {
+        read();
+    } catch (const base::InputError& e) {
+        return e.what();
+    }
+    return "";
 }
 
 // An empty directory of its own under the temporary directory.
