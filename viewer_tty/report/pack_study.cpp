@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <limits>
 
 #include "base/atomic_file.h"
 #include "pipeline/pem_pack.h"
