@@ -8,6 +8,8 @@
 #include <string>
 #include <tuple>
 
+#include "runtime/parameterization.h"
+
 namespace pem::test {
 namespace {
 
@@ -1421,6 +1423,37 @@ void Anisotropy(std::vector<NamedCase>* out) {
     AnisoCubes(out);
 }
 
+// The 2D parameterizations (runtime/parameterization.h) on reflective spheres: lat-long with its
+// seam and poles, the sphere map's texgen, and the two-image atlases (per-triangle charts).
+// A coarse sphere shows the lat-long seam's interpolation across the whole map.
+void Parameterizations(std::vector<NamedCase>* out) {
+    using runtime::Parameterization;
+    uint64_t seed = 1800;
+    const glm::vec3 eye(0.3f, 0.8f, 3.2f);
+    const glm::mat3 eyeFromWorld(glm::lookAt(eye, glm::vec3(0.0f), glm::vec3(0, 1, 0)));
+    for (Parameterization p : runtime::kParameterizations) {
+        if (p == Parameterization::Cube) continue;  // the cube: every other sphere case
+        const runtime::MapLayout layout = runtime::LayoutOf(p, 32);
+        for (auto [min, mip, mag, rings, segs] :
+             {std::tuple{Filter::Linear, MipFilter::Linear, Filter::Linear, 24, 32},
+              std::tuple{Filter::Nearest, MipFilter::Nearest, Filter::Nearest, 24, 32},
+              std::tuple{Filter::Linear, MipFilter::Linear, Filter::Linear, 6, 8}}) {
+            Frame f = NewFrame(96, 80);
+            SamplerState s = Sampler(min, mip, mag);
+            s.wrapS = layout.wrapS, s.wrapT = layout.wrapT;
+            f.textures.push_back(
+                MakeTexture(TextureKind::Tex2D, layout.width, layout.height, s, ++seed));
+            Pass p3;
+            AddSphere(&p3, rings, segs, 96.0f / 80.0f, eye, {0, 0, 0}, 1.0f, 1.0f);
+            f.passes.push_back(runtime::ToLayout(p3, 0, p, eyeFromWorld));
+            out->push_back({std::string("param_") + std::string(runtime::ParameterizationName(p)) +
+                                "_" + FilterName(min, mip) + "_" + std::to_string(rings) + "x" +
+                                std::to_string(segs),
+                            f});
+        }
+    }
+}
+
 }  // namespace
 
 std::vector<NamedCase> ConformanceCases() {
@@ -1441,6 +1474,7 @@ std::vector<NamedCase> ConformanceCases() {
     Depth(&out);
     Anisotropy(&out);
     Extremes(&out);
+    Parameterizations(&out);
     return out;
 }
 

@@ -6,7 +6,8 @@
 // depth buffers: every format and compare function, clears, writes, EQUAL multipass, near/far
 // with and without depth clamp, steep slopes, extreme w; anisotropic filtering: 2D ground planes
 // to the horizon, mirror spheres and a cylinder, a cube floor, every filter, GL values 1..100,
-// LOD controls, non-square textures, receding walls, two units).
+// LOD controls, non-square textures, receding walls, two units; the 2D parameterizations of
+// runtime/parameterization.h: lat-long, sphere map, dual paraboloid and tennis ball spheres).
 // Each case is small (<= 128x128) so the whole corpus renders through llvmpipe in seconds.
 #pragma once
 
