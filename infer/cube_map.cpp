@@ -2,12 +2,25 @@
 // cube_map.cpp — conversions of the inferred cube map (cube_map.h).
 #include "infer/cube_map.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <stdexcept>
 
 namespace pem::infer {
+namespace {
 
-CubeMapF CubeMapFromSolution(const Vector& x, const CubeLayout& layout) {
+// RNE(clamp(v, 0, 1) * 255); NaN maps to 0 (std::clamp would keep it). Rounded half to even as
+// nearbyint does in the default rounding mode, without a library call: adding and subtracting
+// 2^52 leaves v * 255 (in [0, 255]) rounded to an integer.
+uint8_t ToByte(float value) {
+    const double v = value >= 0.0f ? std::min(static_cast<double>(value), 1.0) : 0.0;
+    return static_cast<uint8_t>((v * 255.0 + 0x1p52) - 0x1p52);
+}
+
+}  // namespace
+
+CubeMapF CubeMapFromSolution(const Vector& x, const TexelLayout& layout) {
     if (layout.firstTexel != 0 || static_cast<int64_t>(x.size()) != kChannels * layout.TexelCount())
         throw std::invalid_argument("CubeMapFromSolution: size differs from the layout");
     CubeMapF map;
@@ -36,13 +49,26 @@ raster::Texture ToTexture8(const CubeMapF& map, const raster::SamplerState& samp
     t.sampler = sampler;
     for (const auto& level : map.levels) {
         std::vector<uint8_t> bytes(level.size());
-        for (size_t k = 0; k < level.size(); ++k) {
-            // NaN maps to 0 (std::clamp would keep it). Rounded half to even as nearbyint does
-            // in the default rounding mode, without a library call: adding and subtracting 2^52
-            // leaves v * 255 (in [0, 255]) rounded to an integer.
-            const double v = level[k] >= 0.0f ? std::min(static_cast<double>(level[k]), 1.0) : 0.0;
-            bytes[k] = static_cast<uint8_t>((v * 255.0 + 0x1p52) - 0x1p52);
-        }
+        for (size_t k = 0; k < level.size(); ++k) bytes[k] = ToByte(level[k]);
+        t.levels.push_back(std::move(bytes));
+    }
+    return t;
+}
+
+raster::Texture Texture8FromSolution(const Vector& x, const TexelLayout& layout,
+                                     const raster::SamplerState& sampler) {
+    if (layout.firstTexel != 0 || static_cast<int64_t>(x.size()) != kChannels * layout.TexelCount())
+        throw std::invalid_argument("Texture8FromSolution: size differs from the layout");
+    raster::Texture t;
+    t.kind = layout.kind;
+    t.width = layout.size;
+    t.height = layout.LevelHeight(0);
+    t.sampler = sampler;
+    for (int l = 0; l < layout.levels; ++l) {
+        const size_t begin = size_t{kChannels} * layout.LevelBase(l);
+        const size_t end = size_t{kChannels} * layout.LevelBase(l + 1);
+        std::vector<uint8_t> bytes(end - begin);
+        for (size_t k = begin; k < end; ++k) bytes[k - begin] = ToByte(static_cast<float>(x[k]));
         t.levels.push_back(std::move(bytes));
     }
     return t;

@@ -28,8 +28,13 @@ struct CubeMapF {
 };
 
 // The solver's local vector (layout.firstTexel must be 0) as a cube map, and back.
-CubeMapF CubeMapFromSolution(const Vector& x, const CubeLayout& layout);
+CubeMapF CubeMapFromSolution(const Vector& x, const TexelLayout& layout);
 Vector SolutionFromCubeMap(const CubeMapF& map);
+
+// The 8-bit copy of a solution over every local texel of `layout` (a cube or a 2D texture of
+// runtime/parameterization.h's layouts), with the given sampler state.
+raster::Texture Texture8FromSolution(const Vector& x, const TexelLayout& layout,
+                                     const raster::SamplerState& sampler);
 
 // The 8-bit copy with the given sampler state, and the inverse conversion (bytes / 255).
 raster::Texture ToTexture8(const CubeMapF& map, const raster::SamplerState& sampler);

@@ -23,7 +23,7 @@ struct ImageBlock {
 // and a tap on the unknown texture; fold the other textures' taps (known texels) into the
 // right-hand side.
 ImageBlock SelectImageRows(const raster::RenderingMatrix& a, const Vector& known,
-                           const CubeLayout& layout, uint32_t firstTexel, const Target& target) {
+                           const TexelLayout& layout, uint32_t firstTexel, const Target& target) {
     const uint64_t colBegin = uint64_t{kChannels} * firstTexel;
     const uint64_t colEnd =
         colBegin + uint64_t{kChannels} * static_cast<uint64_t>(layout.TexelCount());
@@ -101,19 +101,14 @@ struct TexelCoord {
     FaceTexel t;
 };
 
-TexelCoord CoordOf(const CubeLayout& layout, uint32_t texel) {
+TexelCoord CoordOf(const TexelLayout& layout, uint32_t texel) {
     int level = 0;
     while (level + 1 < layout.levels && layout.LevelBase(level + 1) <= texel) ++level;
-    const int n = layout.LevelSize(level);
-    const uint32_t k = texel - layout.LevelBase(level);
-    const auto nn = static_cast<uint32_t>(n) * static_cast<uint32_t>(n);
-    return {level,
-            {static_cast<int>(k / nn), static_cast<int>(k % static_cast<uint32_t>(n)),
-             static_cast<int>((k % nn) / static_cast<uint32_t>(n))}};
+    return {level, layout.Locate(level, texel - layout.LevelBase(level))};
 }
 
 // The observed texels grown by `rings` rings of neighbours, as compact indices (-1: not active).
-std::vector<int32_t> ActiveTexels(const CsrMatrix& image, const CubeLayout& layout, int rings,
+std::vector<int32_t> ActiveTexels(const CsrMatrix& image, const TexelLayout& layout, int rings,
                                   std::vector<uint32_t>* active) {
     const auto count = static_cast<size_t>(layout.TexelCount());
     std::vector<uint8_t> on(count, 0);
@@ -123,11 +118,8 @@ std::vector<int32_t> ActiveTexels(const CsrMatrix& image, const CubeLayout& layo
         for (uint32_t t = 0; t < count; ++t) {
             if (!on[t]) continue;
             const TexelCoord tc = CoordOf(layout, t);
-            const int n = layout.LevelSize(tc.level);
-            for (Edge e : {Edge::Left, Edge::Right, Edge::Up, Edge::Down}) {
-                const FaceTexel nb = Neighbour(tc.t, e, n);
-                next[layout.Texel(tc.level, nb.face, nb.i, nb.j)] = 1;
-            }
+            for (Edge e : {Edge::Left, Edge::Right, Edge::Up, Edge::Down})
+                next[layout.NeighbourTexel(tc.level, tc.t, e)] = 1;
         }
         on.swap(next);
     }
@@ -174,10 +166,8 @@ CsrMatrix RestrictColumns(const CsrMatrix& m, const std::vector<int32_t>& index,
 LinearSystem BuildSystem(const raster::RenderingMatrix& a, const raster::Frame& frame, int texture,
                          const Target& target, const RegularizerWeights& weights,
                          const SystemOptions& options) {
-    // Check the inputs: a cube map, one target value (and confidence) per row of A.
+    // Check the inputs: one target value (and confidence) per row of A.
     const raster::Texture& tex = frame.textures.at(static_cast<size_t>(texture));
-    if (tex.kind != raster::TextureKind::Cube)
-        throw std::invalid_argument("BuildSystem: the unknown texture must be a cube map");
     if (static_cast<int64_t>(target.b.size()) != a.rows ||
         (!target.confidence.empty() && static_cast<int64_t>(target.confidence.size()) != a.rows))
         throw std::invalid_argument("BuildSystem: target size differs from the matrix rows");
@@ -185,8 +175,7 @@ LinearSystem BuildSystem(const raster::RenderingMatrix& a, const raster::Frame& 
 
     // Image block: kept rows, local columns, weighted by sqrt(confidence).
     LinearSystem sys;
-    sys.layout.size = tex.width;
-    sys.layout.levels = tex.NumLevels();
+    sys.layout = LayoutOfTexture(tex);
     sys.globalFirstTexel = raster::TexelIndexer(frame.textures).LevelBase(texture, 0);
     ImageBlock img =
         SelectImageRows(a, TexelVector(frame), sys.layout, sys.globalFirstTexel, target);
@@ -294,7 +283,7 @@ double MaskedImageRmse(const LinearSystem& system, const Vector& x, int threads)
 }
 
 Vector FillUnobserved(const LinearSystem& system, const Vector& x, int64_t* filled) {
-    const CubeLayout& layout = system.layout;
+    const TexelLayout& layout = system.layout;
     const auto count = static_cast<size_t>(layout.TexelCount());
     if (system.active.empty()) {
         if (filled) *filled = 0;
@@ -316,17 +305,11 @@ Vector FillUnobserved(const LinearSystem& system, const Vector& x, int64_t* fill
     std::vector<double> values;
     for (int l = 0; l < layout.levels; ++l) {
         const uint32_t b = layout.LevelBase(l), e = layout.LevelBase(l + 1);
-        const int n = layout.LevelSize(l);
-        const auto nn = static_cast<uint32_t>(n) * static_cast<uint32_t>(n);
         auto neighbours = [&](uint32_t t, uint32_t out[4]) {
-            const uint32_t r = t - b;
-            const FaceTexel ft{static_cast<int>(r / nn), static_cast<int>(r % nn) % n,
-                               static_cast<int>((r % nn) / static_cast<uint32_t>(n))};
+            const FaceTexel ft = layout.Locate(l, t - b);
             int k = 0;
-            for (Edge ed : {Edge::Left, Edge::Right, Edge::Up, Edge::Down}) {
-                const FaceTexel nb = Neighbour(ft, ed, n);
-                out[k++] = layout.Texel(l, nb.face, nb.i, nb.j);
-            }
+            for (Edge ed : {Edge::Left, Edge::Right, Edge::Up, Edge::Down})
+                out[k++] = layout.NeighbourTexel(l, ft, ed);
         };
         frontier.clear();
         for (uint32_t t = b; t < e; ++t)
@@ -370,30 +353,32 @@ Vector FillUnobserved(const LinearSystem& system, const Vector& x, int64_t* fill
     }
     // Step 2: levels without unknowns from their neighbours in the pyramid.
     auto copyLevel = [&](int l, int from) {
-        const int n = layout.LevelSize(l), nf = layout.LevelSize(from);
-        for (int f = 0; f < 6; ++f)
-            for (int j = 0; j < n; ++j)
-                for (int i = 0; i < n; ++i) {
+        const int w = layout.LevelSize(l), h = layout.LevelHeight(l);
+        const int wf = layout.LevelSize(from), hf = layout.LevelHeight(from);
+        for (int f = 0; f < layout.Faces(); ++f)
+            for (int j = 0; j < h; ++j)
+                for (int i = 0; i < w; ++i) {
                     const size_t t = layout.Texel(l, f, i, j);
                     for (size_t c = 0; c < kChannels; ++c) {
                         double v = 0.0;
-                        if (from < l) {  // finer: mean of the four children
-                            const int s = nf / n;
-                            for (int dj = 0; dj < s; ++dj)
-                                for (int di = 0; di < s; ++di)
-                                    v +=
-                                        full[size_t{layout.Texel(from, f, i * s + di, j * s + dj)} *
-                                                 kChannels +
-                                             c];
-                            v /= s * s;
+                        if (from < l) {  // finer: mean of the children
+                            const int sx = wf / w, sy = hf / h;
+                            for (int dj = 0; dj < sy; ++dj)
+                                for (int di = 0; di < sx; ++di)
+                                    v += full[size_t{
+                                                  layout.Texel(from, f, i * sx + di, j * sy + dj)} *
+                                                  kChannels +
+                                              c];
+                            v /= sx * sy;
                         } else {  // coarser: the parent
-                            const int s = n / nf;
-                            v = full[size_t{layout.Texel(from, f, i / s, j / s)} * kChannels + c];
+                            v = full[size_t{layout.Texel(from, f, i / (w / wf), j / (h / hf))} *
+                                         kChannels +
+                                     c];
                         }
                         full[t * kChannels + c] = v;
                     }
                 }
-        fills += 6 * n * n;
+        fills += layout.Faces() * w * h;
         levelDone[static_cast<size_t>(l)] = 1;
     };
     for (int l = 1; l < layout.levels; ++l)

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
-// problem.h — the stacked inference system for one cube map of a frame (docs/method.md §5):
+// problem.h — the stacked inference system for one environment map of a frame (a cube map or a 2D
+// layout) (docs/method.md §5):
 //
 //   minimise  sum_rows w (A x - b)^2 + lambda_s |L x|^2 + lambda_p |P x|^2 + lambda_0 |x - xbar|^2
 //   as the least-squares system K x ~ h,  K = [W^1/2 A; sqrt(lambda_s) L; sqrt(lambda_p) P;
@@ -10,12 +11,12 @@
 //
 // Conventions: A is raster's RenderingMatrix of the frame (rows 4 * pixel + c, columns
 // 4 * texel + c, x = texel bytes / 255 or HDR radiance). The unknowns are all MIP levels of
-// texture `texture` (a cube map), numbered locally from 0 (CubeLayout, regularizer.h); other
-// textures' columns are known and move to the right-hand side with their bytes / 255. Image
-// rows are kept when they have confidence > 0 and at least one tap on the unknown texture (the
-// mask); imageRowOf maps them back. The prior value xbar is per channel (default: the
-// confidence-weighted mean of the target over the mask).
-// Not here: the solvers (solver.h), several viewpoints or terms (stack more image blocks).
+// texture `texture` (a cube map or a 2D texture), numbered locally from 0 (TexelLayout,
+// regularizer.h); other textures' columns are known and move to the right-hand side with their
+// bytes / 255. Image rows are kept when they have confidence > 0 and at least one tap on the
+// unknown texture (the mask); imageRowOf maps them back. The prior value xbar is per channel
+// (default: the confidence-weighted mean of the target over the mask). Not here: the solvers
+// (solver.h), several viewpoints or terms (stack more image blocks).
 #pragma once
 
 #include <cstdint>
@@ -58,7 +59,7 @@ struct LinearSystem {
     int64_t imageRows = 0;            // rows [0, imageRows) of K are W^1/2 A
     double imageWeightSum = 0.0;      // sum of w over the image rows (RMSE denominator)
     std::vector<int64_t> imageRowOf;  // image row -> row of the rendering matrix
-    CubeLayout layout;                // unknowns, numbered from 0
+    TexelLayout layout;               // unknowns, numbered from 0
     uint32_t globalFirstTexel = 0;    // raster's index of the unknown texture's first texel
     std::vector<uint32_t> active;     // unknown k is local texel active[k]; empty: all texels
     Vector imageSqrtWeight;           // sqrt(w) per image row

@@ -47,10 +47,9 @@ FaceTexel CrossSeam(int face, Edge e, int i, int j, int m) {
 // allocation per row: the regularizers have millions of them).
 constexpr size_t kMaxRowTexels = 5;
 
-// The coefficients of the three kinds of row: a neighbour difference, a level minus the mean
-// of its four children, a texel.
+// The coefficients of two kinds of row: a neighbour difference, a texel (the pyramid's: a
+// texel minus the mean of its children, PyramidRowOf).
 constexpr std::array kDifference{1.0, -1.0};
-constexpr std::array kPyramid{1.0, -0.25, -0.25, -0.25, -0.25};
 constexpr std::array kValue{1.0};
 
 void AddChannelRows(std::span<const uint32_t> texels, std::span<const double> coef, CsrMatrix* m) {
@@ -61,7 +60,40 @@ void AddChannelRows(std::span<const uint32_t> texels, std::span<const double> co
     }
 }
 
-CsrMatrix EmptyRows(const CubeLayout& layout, int64_t cols) {
+// The pyramid row of coarse texel (l, f, i, j): the texel, then its children at level l - 1
+// (rows then columns: 4, 2 or 1 as the level halves both sizes, one or neither), coefficients 1
+// and -1 / children. No texels when the level halves neither size exactly.
+struct PyramidRow {
+    std::array<uint32_t, kMaxRowTexels> texels{};
+    std::array<double, kMaxRowTexels> coef{};
+    size_t count = 0;
+    std::span<const uint32_t> Texels() const { return {texels.data(), count}; }
+    std::span<const double> Coef() const { return {coef.data(), count}; }
+};
+
+// 2 when a size halves from level l - 1 to l, 1 when it stays, 0 otherwise.
+int Halving(int finer, int coarser) {
+    return finer == 2 * coarser ? 2 : finer == coarser ? 1 : 0;
+}
+
+PyramidRow PyramidRowOf(const TexelLayout& layout, int l, int f, int i, int j) {
+    PyramidRow row;
+    const int sx = Halving(layout.LevelSize(l - 1), layout.LevelSize(l));
+    const int sy = Halving(layout.LevelHeight(l - 1), layout.LevelHeight(l));
+    if (sx * sy < 2) return row;
+    row.texels[0] = layout.Texel(l, f, i, j);
+    row.coef[0] = 1.0;
+    row.count = 1;
+    const double share = -1.0 / (sx * sy);
+    for (int dj = 0; dj < sy; ++dj)
+        for (int di = 0; di < sx; ++di) {
+            row.texels[row.count] = layout.Texel(l - 1, f, sx * i + di, sy * j + dj);
+            row.coef[row.count++] = share;
+        }
+    return row;
+}
+
+CsrMatrix EmptyRows(const TexelLayout& layout, int64_t cols) {
     if (static_cast<int64_t>(layout.firstTexel) + layout.TexelCount() > cols / kChannels)
         throw std::invalid_argument("regularizer: layout exceeds the system's columns");
     CsrMatrix m;
@@ -82,6 +114,12 @@ bool AddActiveRows(std::span<const uint32_t> texels, std::span<const double> coe
     return true;
 }
 
+// The layout numbered from 0 (the active sets' texels are relative to firstTexel).
+TexelLayout Local(TexelLayout layout) {
+    layout.firstTexel = 0;
+    return layout;
+}
+
 CsrMatrix ActiveEmpty(const std::vector<uint32_t>& active) {
     CsrMatrix m;
     m.cols = static_cast<int64_t>(active.size()) * kChannels;
@@ -90,10 +128,43 @@ CsrMatrix ActiveEmpty(const std::vector<uint32_t>& active) {
 
 }  // namespace
 
-uint32_t CubeLayout::LevelBase(int level) const {
+uint32_t TexelLayout::LevelBase(int level) const {
     uint32_t base = 0;
-    for (int l = 0; l < level; ++l) base += static_cast<uint32_t>(6 * LevelSize(l) * LevelSize(l));
+    for (int l = 0; l < level; ++l)
+        base += static_cast<uint32_t>(Faces() * LevelSize(l) * LevelHeight(l));
     return base;
+}
+
+FaceTexel TexelLayout::Locate(int level, uint32_t r) const {
+    const auto w = static_cast<uint32_t>(LevelSize(level));
+    const uint32_t perFace = w * static_cast<uint32_t>(LevelHeight(level));
+    return {static_cast<int>(r / perFace), static_cast<int>((r % perFace) % w),
+            static_cast<int>((r % perFace) / w)};
+}
+
+uint32_t TexelLayout::NeighbourTexel(int level, const FaceTexel& t, Edge e) const {
+    if (kind == raster::TextureKind::Cube) {
+        const FaceTexel nb = Neighbour(t, e, LevelSize(level));
+        return Texel(level, nb.face, nb.i, nb.j);
+    }
+    const int w = LevelSize(level), h = LevelHeight(level);
+    int i = t.i + (e == Edge::Left ? -1 : e == Edge::Right ? 1 : 0);
+    const int j = t.j + (e == Edge::Up ? -1 : e == Edge::Down ? 1 : 0);
+    if (wrapS) i = (i + w) % w;
+    if (i < 0 || i >= w || j < 0 || j >= h) return Texel(level, t.face, t.i, t.j);
+    return Texel(level, t.face, i, j);
+}
+
+TexelLayout LayoutOfTexture(const raster::Texture& texture, uint32_t firstTexel) {
+    TexelLayout l;
+    l.firstTexel = firstTexel;
+    l.size = texture.width;
+    l.levels = texture.NumLevels();
+    l.kind = texture.kind;
+    l.height = texture.height;
+    l.wrapS =
+        texture.kind == raster::TextureKind::Tex2D && texture.sampler.wrapS == raster::Wrap::Repeat;
+    return l;
 }
 
 FaceTexel Neighbour(const FaceTexel& t, Edge e, int n) {
@@ -104,22 +175,21 @@ FaceTexel Neighbour(const FaceTexel& t, Edge e, int n) {
     return CrossSeam(t.face, e, t.i, t.j, n - 1);
 }
 
-std::vector<std::pair<uint32_t, uint32_t>> NeighbourPairs(const CubeLayout& layout, int level) {
-    const int n = layout.LevelSize(level);
+std::vector<std::pair<uint32_t, uint32_t>> NeighbourPairs(const TexelLayout& layout, int level) {
+    const int w = layout.LevelSize(level), h = layout.LevelHeight(level);
     std::vector<std::pair<uint32_t, uint32_t>> pairs;
-    pairs.reserve(static_cast<size_t>(12 * n * n));
+    pairs.reserve(static_cast<size_t>(2 * layout.Faces() * w * h));
     // Right and down neighbour of every texel inside a face. Across seams right/down alone is
     // not enough: some edges are left or up from both faces (+Y's left edge is -X's top row),
     // others right or down from both (-Y's and -Z's bottom rows). So every texel on a face
     // border also crosses its left and up seams, and the pairs are normalised, sorted, unique.
-    for (int f = 0; f < 6; ++f)
-        for (int j = 0; j < n; ++j)
-            for (int i = 0; i < n; ++i)
+    for (int f = 0; f < layout.Faces(); ++f)
+        for (int j = 0; j < h; ++j)
+            for (int i = 0; i < w; ++i)
                 for (Edge e : {Edge::Right, Edge::Down, Edge::Left, Edge::Up}) {
                     if ((e == Edge::Left && i > 0) || (e == Edge::Up && j > 0)) continue;
-                    const FaceTexel nb = Neighbour({f, i, j}, e, n);
                     const uint32_t a = layout.Texel(level, f, i, j);
-                    const uint32_t b = layout.Texel(level, nb.face, nb.i, nb.j);
+                    const uint32_t b = layout.NeighbourTexel(level, {f, i, j}, e);
                     if (a != b) pairs.emplace_back(std::min(a, b), std::max(a, b));
                 }
     std::sort(pairs.begin(), pairs.end());
@@ -127,7 +197,7 @@ std::vector<std::pair<uint32_t, uint32_t>> NeighbourPairs(const CubeLayout& layo
     return pairs;
 }
 
-CsrMatrix SmoothnessRows(const CubeLayout& layout, int64_t cols) {
+CsrMatrix SmoothnessRows(const TexelLayout& layout, int64_t cols) {
     CsrMatrix m = EmptyRows(layout, cols);
     for (int l = 0; l < layout.levels; ++l)
         for (const auto& [a, b] : NeighbourPairs(layout, l))
@@ -135,32 +205,26 @@ CsrMatrix SmoothnessRows(const CubeLayout& layout, int64_t cols) {
     return m;
 }
 
-CsrMatrix PyramidRows(const CubeLayout& layout, int64_t cols) {
+CsrMatrix PyramidRows(const TexelLayout& layout, int64_t cols) {
     CsrMatrix m = EmptyRows(layout, cols);
-    for (int l = 1; l < layout.levels; ++l) {
-        const int n = layout.LevelSize(l);
-        if (layout.LevelSize(l - 1) != 2 * n) continue;  // not a halving step (size not 2^k)
-        for (int f = 0; f < 6; ++f)
-            for (int j = 0; j < n; ++j)
-                for (int i = 0; i < n; ++i)
-                    AddChannelRows(
-                        std::array{layout.Texel(l, f, i, j), layout.Texel(l - 1, f, 2 * i, 2 * j),
-                                   layout.Texel(l - 1, f, 2 * i + 1, 2 * j),
-                                   layout.Texel(l - 1, f, 2 * i, 2 * j + 1),
-                                   layout.Texel(l - 1, f, 2 * i + 1, 2 * j + 1)},
-                        kPyramid, &m);
-    }
+    for (int l = 1; l < layout.levels; ++l)
+        for (int f = 0; f < layout.Faces(); ++f)
+            for (int j = 0; j < layout.LevelHeight(l); ++j)
+                for (int i = 0; i < layout.LevelSize(l); ++i) {
+                    const PyramidRow row = PyramidRowOf(layout, l, f, i, j);
+                    if (row.count > 0) AddChannelRows(row.Texels(), row.Coef(), &m);
+                }
     return m;
 }
 
-CsrMatrix PriorRows(const CubeLayout& layout, int64_t cols) {
+CsrMatrix PriorRows(const TexelLayout& layout, int64_t cols) {
     CsrMatrix m = EmptyRows(layout, cols);
     const uint32_t end = layout.firstTexel + static_cast<uint32_t>(layout.TexelCount());
     for (uint32_t t = layout.firstTexel; t < end; ++t) AddChannelRows(std::array{t}, kValue, &m);
     return m;
 }
 
-CsrMatrix SmoothnessRows(const CubeLayout& layout, const std::vector<uint32_t>& active,
+CsrMatrix SmoothnessRows(const TexelLayout& layout, const std::vector<uint32_t>& active,
                          const std::vector<int32_t>& index) {
     CsrMatrix m = ActiveEmpty(active);
     auto on = [&](uint32_t t) { return index[t] >= 0; };
@@ -169,18 +233,14 @@ CsrMatrix SmoothnessRows(const CubeLayout& layout, const std::vector<uint32_t>& 
     for (int l = 0; l < layout.levels; ++l) {
         // NeighbourPairs' rule from every active texel of the level; both ends must be active.
         const uint32_t base = layout.LevelBase(l), end = layout.LevelBase(l + 1);
-        const int n = layout.LevelSize(l);
-        const CubeLayout local{0, layout.size, layout.levels};
+        const TexelLayout local = Local(layout);
         pairs.clear();
         for (; k < active.size() && active[k] < end; ++k) {
-            const uint32_t a = active[k], r = a - base;
-            const auto nn = static_cast<uint32_t>(n * n);
-            const int f = static_cast<int>(r / nn), i = static_cast<int>(r % nn) % n,
-                      j = static_cast<int>((r % nn) / static_cast<uint32_t>(n));
+            const uint32_t a = active[k];
+            const FaceTexel t = layout.Locate(l, a - base);
             for (Edge e : {Edge::Right, Edge::Down, Edge::Left, Edge::Up}) {
-                if ((e == Edge::Left && i > 0) || (e == Edge::Up && j > 0)) continue;
-                const FaceTexel nb = Neighbour({f, i, j}, e, n);
-                const uint32_t b = local.Texel(l, nb.face, nb.i, nb.j);
+                if ((e == Edge::Left && t.i > 0) || (e == Edge::Up && t.j > 0)) continue;
+                const uint32_t b = local.NeighbourTexel(l, t, e);
                 if (a != b && on(b)) pairs.emplace_back(std::min(a, b), std::max(a, b));
             }
         }
@@ -191,29 +251,22 @@ CsrMatrix SmoothnessRows(const CubeLayout& layout, const std::vector<uint32_t>& 
     return m;
 }
 
-CsrMatrix PyramidRows(const CubeLayout& layout, const std::vector<uint32_t>& active,
+CsrMatrix PyramidRows(const TexelLayout& layout, const std::vector<uint32_t>& active,
                       const std::vector<int32_t>& index) {
     CsrMatrix m = ActiveEmpty(active);
-    const CubeLayout local{0, layout.size, layout.levels};
-    for (int l = 1; l < layout.levels; ++l) {
-        const int n = layout.LevelSize(l);
-        if (layout.LevelSize(l - 1) != 2 * n) continue;
-        for (int f = 0; f < 6; ++f)
-            for (int j = 0; j < n; ++j)
-                for (int i = 0; i < n; ++i) {
+    const TexelLayout local = Local(layout);
+    for (int l = 1; l < layout.levels; ++l)
+        for (int f = 0; f < layout.Faces(); ++f)
+            for (int j = 0; j < layout.LevelHeight(l); ++j)
+                for (int i = 0; i < layout.LevelSize(l); ++i) {
                     if (index[local.Texel(l, f, i, j)] < 0) continue;
-                    AddActiveRows(
-                        std::array{local.Texel(l, f, i, j), local.Texel(l - 1, f, 2 * i, 2 * j),
-                                   local.Texel(l - 1, f, 2 * i + 1, 2 * j),
-                                   local.Texel(l - 1, f, 2 * i, 2 * j + 1),
-                                   local.Texel(l - 1, f, 2 * i + 1, 2 * j + 1)},
-                        kPyramid, index, &m);
+                    const PyramidRow row = PyramidRowOf(local, l, f, i, j);
+                    if (row.count > 0) AddActiveRows(row.Texels(), row.Coef(), index, &m);
                 }
-    }
     return m;
 }
 
-CsrMatrix PriorRows(const CubeLayout& /*layout*/, const std::vector<uint32_t>& active,
+CsrMatrix PriorRows(const TexelLayout& /*layout*/, const std::vector<uint32_t>& active,
                     const std::vector<int32_t>& index) {
     CsrMatrix m = ActiveEmpty(active);
     for (uint32_t t : active) AddActiveRows(std::array{t}, kValue, index, &m);

@@ -17,9 +17,11 @@
 // cost as much as one squared pixel error of full confidence. Texels are in the same [0, 1]
 // (8-bit) or HDR radiance units as the pixels. Each pair counts once at every level: no
 // per-level or per-solid-angle scaling.
-// Texel numbering (CubeLayout) is local to the unknown texture: texel (level, face, i, j) is
-// firstTexel + LevelBase(level) + (face * n_l + j) * n_l + i, the raster/texel_index.h layout.
-// Not here: 2D textures (cube maps only), weights per texel, the prior's value (problem.h).
+// Texel numbering (TexelLayout) is local to the unknown texture: texel (level, face, i, j) is
+// firstTexel + LevelBase(level) + (face * h_l + j) * w_l + i, the raster/texel_index.h layout.
+// 2D textures: neighbours within each level's w_l x h_l grid (around s when it repeats), the
+// pyramid's children 4, 2 or 1 as the level halves both sizes, one or neither.
+// Not here: weights per texel, the prior's value (problem.h).
 #pragma once
 
 #include <cstdint>
@@ -27,24 +29,12 @@
 #include <vector>
 
 #include "infer/sparse.h"
+#include "raster/frame.h"
 
 namespace pem::infer {
 
-struct CubeLayout {
-    uint32_t firstTexel = 0;  // index of texel (0, 0) of face 0 of level 0
-    int size = 1;             // level-0 face width (a power of two)
-    int levels = 1;           // MIP levels present (unknowns)
-
-    int LevelSize(int level) const { return std::max(1, size >> level); }
-    uint32_t LevelBase(int level) const;  // relative to firstTexel
-    uint32_t Texel(int level, int face, int i, int j) const {
-        const int n = LevelSize(level);
-        return firstTexel + LevelBase(level) + static_cast<uint32_t>((face * n + j) * n + i);
-    }
-    int64_t TexelCount() const { return LevelBase(levels); }
-};
-
-// A texel of one level: face (GL order +X, -X, +Y, -Y, +Z, -Z), column i along s, row j along t.
+// A texel of one level: face (GL order +X, -X, +Y, -Y, +Z, -Z; 0 for a 2D texture), column i
+// along s, row j along t.
 struct FaceTexel {
     int face = 0, i = 0, j = 0;
     bool operator==(const FaceTexel&) const = default;
@@ -52,28 +42,60 @@ struct FaceTexel {
 
 enum class Edge { Left, Right, Up, Down };  // i - 1, i + 1, j - 1, j + 1
 
-// The neighbour of t in direction e on a level of face size n: inside the face, or across the
-// seam by the sampler's adjacency table.
+// The neighbour of t in direction e on a cube level of face size n: inside the face, or across
+// the seam by the sampler's adjacency table.
 FaceTexel Neighbour(const FaceTexel& t, Edge e, int n);
 
+// The unknown texture's texels: a cube map, or a 2D texture (one of runtime/parameterization.h's
+// layouts) whose neighbours are the grid's, across the s edge when s repeats.
+struct TexelLayout {
+    uint32_t firstTexel = 0;  // index of texel (0, 0) of face 0 of level 0
+    int size = 1;             // level-0 width (a cube's face size; a power of two)
+    int levels = 1;           // MIP levels present (unknowns)
+    raster::TextureKind kind = raster::TextureKind::Cube;
+    int height = 0;      // a 2D texture's level-0 height (a power of two); cubes: size
+    bool wrapS = false;  // 2D: GL_REPEAT along s (columns 0 and w - 1 are neighbours)
+
+    int Faces() const { return kind == raster::TextureKind::Cube ? 6 : 1; }
+    int LevelSize(int level) const { return std::max(1, size >> level); }  // level width
+    int LevelHeight(int level) const {
+        return std::max(1, (kind == raster::TextureKind::Cube ? size : height) >> level);
+    }
+    uint32_t LevelBase(int level) const;  // relative to firstTexel
+    uint32_t Texel(int level, int face, int i, int j) const {
+        const int w = LevelSize(level), h = LevelHeight(level);
+        return firstTexel + LevelBase(level) + static_cast<uint32_t>((face * h + j) * w + i);
+    }
+    int64_t TexelCount() const { return LevelBase(levels); }
+    // The texel of `level` at offset r from the level's first texel.
+    FaceTexel Locate(int level, uint32_t r) const;
+    // Texel index of t's neighbour in direction e: across cube seams by the sampler's adjacency;
+    // in a 2D texture within the level (around s when wrapS), else t itself (no neighbour).
+    uint32_t NeighbourTexel(int level, const FaceTexel& t, Edge e) const;
+};
+
+// The layout of one texture of a frame (its kind, size, levels and wrap along s).
+TexelLayout LayoutOfTexture(const raster::Texture& texture, uint32_t firstTexel = 0);
+
 // Every undirected neighbour pair of one level, as (smaller, larger) texel indices of `layout`,
-// sorted. Each texel of a cube surface grid has exactly 4 neighbours, so there are 12 n^2 pairs.
-std::vector<std::pair<uint32_t, uint32_t>> NeighbourPairs(const CubeLayout& layout, int level);
+// sorted. Each texel of a cube surface grid has exactly 4 neighbours, so there are 12 n^2 pairs
+// (a 2D level of w x h: (w - 1) h + w (h - 1), and h more when s repeats and w > 2).
+std::vector<std::pair<uint32_t, uint32_t>> NeighbourPairs(const TexelLayout& layout, int level);
 
 // Unit-weight rows (see the header comment); `cols` is the column count of the system.
-CsrMatrix SmoothnessRows(const CubeLayout& layout, int64_t cols);
-CsrMatrix PyramidRows(const CubeLayout& layout, int64_t cols);
-CsrMatrix PriorRows(const CubeLayout& layout, int64_t cols);
+CsrMatrix SmoothnessRows(const TexelLayout& layout, int64_t cols);
+CsrMatrix PyramidRows(const TexelLayout& layout, int64_t cols);
+CsrMatrix PriorRows(const TexelLayout& layout, int64_t cols);
 
 // The same rows restricted to active texels, built in time proportional to them: `active` lists
 // the active texels (relative to firstTexel, increasing) and index[t] is t's position in it (-1:
 // inactive). A row is kept when all its texels are active, with columns 4 index[t] + c; kept
 // rows stay in the order above (the rows of the full matrix whose columns are all active).
-CsrMatrix SmoothnessRows(const CubeLayout& layout, const std::vector<uint32_t>& active,
+CsrMatrix SmoothnessRows(const TexelLayout& layout, const std::vector<uint32_t>& active,
                          const std::vector<int32_t>& index);
-CsrMatrix PyramidRows(const CubeLayout& layout, const std::vector<uint32_t>& active,
+CsrMatrix PyramidRows(const TexelLayout& layout, const std::vector<uint32_t>& active,
                       const std::vector<int32_t>& index);
-CsrMatrix PriorRows(const CubeLayout& layout, const std::vector<uint32_t>& active,
+CsrMatrix PriorRows(const TexelLayout& layout, const std::vector<uint32_t>& active,
                     const std::vector<int32_t>& index);
 
 }  // namespace pem::infer

@@ -1429,32 +1429,35 @@ void Anisotropy(std::vector<NamedCase>* out) {
 void Parameterizations(std::vector<NamedCase>* out) {
     using runtime::Parameterization;
     uint64_t seed = 1800;
-    const glm::vec3 eye(0.3f, 0.8f, 3.2f);
-    const glm::mat3 eyeFromWorld(glm::lookAt(eye, glm::vec3(0.0f), glm::vec3(0, 1, 0)));
     for (Parameterization p : runtime::kParameterizations) {
         if (p == Parameterization::Cube) continue;  // the cube: every other sphere case
-        const runtime::MapLayout layout = runtime::LayoutOf(p, 32);
         for (auto [min, mip, mag, rings, segs] :
              {std::tuple{Filter::Linear, MipFilter::Linear, Filter::Linear, 24, 32},
               std::tuple{Filter::Nearest, MipFilter::Nearest, Filter::Nearest, 24, 32},
-              std::tuple{Filter::Linear, MipFilter::Linear, Filter::Linear, 6, 8}}) {
-            Frame f = NewFrame(96, 80);
-            SamplerState s = Sampler(min, mip, mag);
-            s.wrapS = layout.wrapS, s.wrapT = layout.wrapT;
-            f.textures.push_back(
-                MakeTexture(TextureKind::Tex2D, layout.width, layout.height, s, ++seed));
-            Pass p3;
-            AddSphere(&p3, rings, segs, 96.0f / 80.0f, eye, {0, 0, 0}, 1.0f, 1.0f);
-            f.passes.push_back(runtime::ToLayout(p3, 0, p, eyeFromWorld));
+              std::tuple{Filter::Linear, MipFilter::Linear, Filter::Linear, 6, 8}})
             out->push_back({std::string("param_") + std::string(runtime::ParameterizationName(p)) +
                                 "_" + FilterName(min, mip) + "_" + std::to_string(rings) + "x" +
                                 std::to_string(segs),
-                            f});
-        }
+                            LayoutSphere(p, 32, Sampler(min, mip, mag), rings, segs, ++seed)});
     }
 }
 
 }  // namespace
+
+Frame LayoutSphere(runtime::Parameterization p, int size, const SamplerState& sampler, int rings,
+                   int segments, uint64_t seed) {
+    const glm::vec3 eye(0.3f, 0.8f, 3.2f);
+    const glm::mat3 eyeFromWorld(glm::lookAt(eye, glm::vec3(0.0f), glm::vec3(0, 1, 0)));
+    const runtime::MapLayout layout = runtime::LayoutOf(p, size);
+    Frame f = NewFrame(96, 80);
+    SamplerState s = sampler;
+    s.wrapS = layout.wrapS, s.wrapT = layout.wrapT;
+    f.textures.push_back(MakeTexture(layout.kind, layout.width, layout.height, s, seed));
+    Pass cube;
+    AddSphere(&cube, rings, segments, 96.0f / 80.0f, eye, {0, 0, 0}, 1.0f, 1.0f);
+    f.passes.push_back(runtime::ToLayout(cube, 0, p, eyeFromWorld));
+    return f;
+}
 
 std::vector<NamedCase> ConformanceCases() {
     std::vector<NamedCase> out;

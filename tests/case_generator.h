@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "raster/frame.h"
+#include "runtime/parameterization.h"
 
 namespace pem::test {
 
@@ -41,6 +42,12 @@ struct NamedCase {
 };
 
 std::vector<NamedCase> ConformanceCases();
+
+// A 96x80 frame of a mirror sphere (rings x segments quads) reflecting a random map of layout
+// `p` at `size` (runtime/parameterization.h), drawn with the layout's texgen.
+raster::Frame LayoutSphere(runtime::Parameterization p, int size,
+                           const raster::SamplerState& sampler, int rings, int segments,
+                           uint64_t seed);
 
 // The benchmark frame of bench/: width x height, a full-screen sky quad and a UV sphere of
 // `rings` x `segments` quads with reflection vectors, one `cubeSize` cube, trilinear, seamless.

@@ -68,7 +68,7 @@ void ExpectSameMatrix(const CsrMatrix& a, const CsrMatrix& b, const char* what) 
 
 TEST(ActiveSystem, RegularizerRowsEqualRestrictedFullRows) {
     for (int size : {1, 2, 8}) {
-        const CubeLayout layout{0, size, 1 + (size == 8 ? 3 : size == 2 ? 1 : 0)};
+        const TexelLayout layout{0, size, 1 + (size == 8 ? 3 : size == 2 ? 1 : 0)};
         const auto count = static_cast<size_t>(layout.TexelCount());
         // A pseudo-random active set (about 40 %), plus all of one face of level 0.
         std::vector<int32_t> index(count, -1);
@@ -143,7 +143,7 @@ LinearSystem MagnifiedSystem(int rings) {
 
 TEST(ActiveSystem, FillUnobservedIsSmoothAndKeepsObservedTexels) {
     const LinearSystem sys = MagnifiedSystem(0);
-    const CubeLayout& layout = sys.layout;
+    const TexelLayout& layout = sys.layout;
     ASSERT_FALSE(sys.active.empty());
     // Random values in [0.2, 0.8] on the active texels.
     Vector x(static_cast<size_t>(sys.Cols()));

@@ -27,7 +27,7 @@ glm::dvec3 CentreDirection(int face, int i, int j, int n) {
 
 TEST(Regularizer, EveryTexelHasFourNeighbours) {
     for (int n : {1, 2, 4, 16}) {
-        CubeLayout layout{0, n, 1};
+        TexelLayout layout{0, n, 1};
         const auto pairs = NeighbourPairs(layout, 0);
         EXPECT_EQ(pairs.size(), static_cast<size_t>(12 * n * n)) << n;
         std::map<uint32_t, int> degree;
@@ -71,7 +71,7 @@ TEST(Regularizer, SamplerFootprintsAreConnected) {
     opt.profile = raster::Profile::Linear;
     const raster::RenderingMatrix a =
         raster::BuildRenderingMatrix(raster::PreparedFrame(frame), opt);
-    const CubeLayout layout{0, 8, frame.textures[0].NumLevels()};
+    const TexelLayout layout{0, 8, frame.textures[0].NumLevels()};
     std::set<std::pair<uint32_t, uint32_t>> pairs;
     for (int l = 0; l < layout.levels; ++l)
         for (const auto& p : NeighbourPairs(layout, l)) pairs.insert(p);
@@ -115,7 +115,7 @@ TEST(Regularizer, SamplerFootprintsAreConnected) {
 }
 
 TEST(Regularizer, RowsPerChannel) {
-    const CubeLayout layout{0, 4, 3};  // 4x4, 2x2, 1x1
+    const TexelLayout layout{0, 4, 3};  // 4x4, 2x2, 1x1
     const int64_t cols = 4 * layout.TexelCount();
     const CsrMatrix smooth = SmoothnessRows(layout, cols), pyr = PyramidRows(layout, cols),
                     prior = PriorRows(layout, cols);
@@ -129,6 +129,32 @@ TEST(Regularizer, RowsPerChannel) {
     Vector x(static_cast<size_t>(cols), 0.7), y;
     Multiply(smooth, x, &y, 1);
     for (double v : y) EXPECT_EQ(v, 0.0);
+    Multiply(pyr, x, &y, 1);
+    for (double v : y) EXPECT_NEAR(v, 0.0, 1e-15);
+}
+
+// 2D layouts: the grid's pairs counted by hand (w x h level: (w - 1) h + w (h - 1), h more when
+// s repeats and w > 2), the pyramid's children as the level halves both sizes or one.
+TEST(Regularizer, TwoDimensionalGrids) {
+    TexelLayout layout{0, 8, 4, raster::TextureKind::Tex2D, 2, false};  // 8x2, 4x1, 2x1, 1x1
+    EXPECT_EQ(layout.TexelCount(), 16 + 4 + 2 + 1);
+    EXPECT_EQ(NeighbourPairs(layout, 0).size(), 7u * 2 + 8u * 1);
+    EXPECT_EQ(NeighbourPairs(layout, 2).size(), 1u);
+    layout.wrapS = true;
+    EXPECT_EQ(NeighbourPairs(layout, 0).size(), 7u * 2 + 8u * 1 + 2u);  // (7, j)-(0, j)
+    EXPECT_EQ(NeighbourPairs(layout, 2).size(), 1u);                    // 2 wide: the same pair
+    EXPECT_EQ(layout.NeighbourTexel(0, {0, 0, 1}, Edge::Left), layout.Texel(0, 0, 7, 1));
+    EXPECT_EQ(layout.NeighbourTexel(0, {0, 3, 1}, Edge::Down), layout.Texel(0, 0, 3, 1));  // edge
+    const int64_t cols = 4 * layout.TexelCount();
+    const CsrMatrix pyr = PyramidRows(layout, cols);
+    EXPECT_EQ(pyr.rows, 4 * (4 + 2 + 1));
+    // Level 1 (4x1) from 8x2: four children of -1/4; level 2 (2x1) from 4x1: two of -1/2.
+    EXPECT_EQ(pyr.rowPtr[1] - pyr.rowPtr[0], 5);
+    EXPECT_EQ(pyr.val[1], -0.25);
+    const int64_t level2 = pyr.rowPtr[4 * 4];
+    EXPECT_EQ(pyr.rowPtr[4 * 4 + 1] - level2, 3);
+    EXPECT_EQ(pyr.val[static_cast<size_t>(level2) + 1], -0.5);
+    Vector x(static_cast<size_t>(cols), 0.3), y;
     Multiply(pyr, x, &y, 1);
     for (double v : y) EXPECT_NEAR(v, 0.0, 1e-15);
 }

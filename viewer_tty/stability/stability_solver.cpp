@@ -187,7 +187,7 @@ double ImageRelativeResidual(const infer::LinearSystem& sys, const Vector& x, in
 // Fraction of image rows whose taps reach two MIP levels of the unknown texture.
 double TwoLevelRowFraction(const infer::LinearSystem& sys) {
     const infer::CsrMatrix& k = sys.k.A();
-    const infer::CubeLayout& layout = sys.layout;
+    const infer::TexelLayout& layout = sys.layout;
     int64_t two = 0;
     for (int64_t r = 0; r < sys.imageRows; ++r) {
         int first = -1;
