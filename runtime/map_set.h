@@ -19,6 +19,7 @@
 #include "raster/camera.h"
 #include "raster/frame.h"
 #include "runtime/lens_group_em.h"
+#include "runtime/parameterization.h"
 #include "trace/tracer.h"
 
 namespace pem::runtime {
@@ -62,9 +63,10 @@ struct MapSet {
     std::vector<int> inferred;            // the samples that have maps (not empty)
     std::vector<LensGroupEm> groups;      // one per scene lens group
     int spp = 1;                          // the traced images' K×K sampling (t's unit)
-    int res = 0;                          // face size of the maps
-    trace::TraceOptions tracing;          // the ray tracer's options the maps were traced with
-    MapHardware hardware;                 // what they were inferred for and are drawn by
+    int res = 0;                          // face size of the maps (the layout's size)
+    Parameterization parameterization = Parameterization::Cube;  // the maps' layout
+    trace::TraceOptions tracing;  // the ray tracer's options the maps were traced with
+    MapHardware hardware;         // what they were inferred for and are drawn by
     std::function<const raster::Texture*(int view, int group, const std::string& name)> map;
 };
 

@@ -118,9 +118,12 @@ void CountPaths(const LensPaths& lp, FrameStats* stats) {
 class FrameBatch {
   public:
     // k: subpixels per pixel side (supersampling.h).
+    // parameterization: the maps' layout (the static EM is a cube).
     FrameBatch(const raster::Camera& camera, int k, const raster::RenderOptions& hardware,
-               int threads, PreparedCache* prepared, FrameStats* stats)
+               int threads, PreparedCache* prepared, FrameStats* stats,
+               Parameterization parameterization = Parameterization::Cube)
         : camera_(camera),
+          parameterization_(parameterization),
           k_(k),
           hardware_(hardware),
           threads_(threads),
@@ -150,6 +153,8 @@ class FrameBatch {
             po.modulate = true;
             po.blend = slot == 0 ? raster::BlendState::None() : PremultipliedOver();
             po.depthTest = LayerDepthTest(slot == 0);
+            po.parameterization = parameterization_;
+            po.eyeFromWorld = glm::mat3(raster::ViewMatrix(camera_));
             frame.textures.push_back(Shape(*maps[k]));
             frameReady.push_back(Prepared(maps[k]));
             if (sameAs < 0)
@@ -194,6 +199,7 @@ class FrameBatch {
     }
 
     const raster::Camera& camera_;
+    Parameterization parameterization_;
     int k_;
     raster::RenderOptions hardware_;
     int threads_;
@@ -379,7 +385,8 @@ void Renderer::Impl::DrawMaps(const GroupDraw& d, const GroupGeometry& gg, bool 
         for (const LayerUse& u : uses)
             coords[term].push_back(ShellCoords(gg.exits[term], *u.shell, g.emOrigin, d.s.threads));
     d.stats->texgenSeconds += Since(t0);
-    FrameBatch batch(d.camera, d.k, Hardware(d.s), d.s.threads, &prepared, d.stats);
+    FrameBatch batch(d.camera, d.k, Hardware(d.s), d.s.threads, &prepared, d.stats,
+                     maps.parameterization);
     int firstFrameOf[2] = {-1, -1};  // per term: the first sample's frame
     for (size_t k = 0; k < d.samples.size(); ++k) {
         for (int term = 0; term < g.Terms(); ++term) {
@@ -544,6 +551,8 @@ std::vector<std::vector<raster::ImageF>> Renderer::LayerImages(const raster::Cam
             const PassGeometry& geo = pemSplit && uses.size() == 2 && k == 0 ? gg.offHull : gg.all;
             PassOptions po;
             po.depthTest = LayerDepthTest(true);
+            po.parameterization = m.maps.parameterization;
+            po.eyeFromWorld = glm::mat3(raster::ViewMatrix(camera));
             FillLayerPass(geo, ShellCoords(gg.exits[term], *uses[k].shell, g.emOrigin, s.threads),
                           gg.exits[term], po, &frame.passes[0], s.threads);
             const raster::RenderResult rr = raster::Render(raster::PreparedFrame(frame), ro);

@@ -209,6 +209,8 @@ void FillLayerPass(const PassGeometry& geometry, const std::vector<glm::vec3>& c
         }
     });
     pass->indices = geometry.indices;
+    if (options.parameterization != Parameterization::Cube)
+        *pass = ToLayout(*pass, 0, options.parameterization, options.eyeFromWorld);
 }
 
 }  // namespace pem::runtime

@@ -28,6 +28,7 @@
 #include "raster/camera.h"
 #include "raster/frame.h"
 #include "runtime/lens_paths.h"
+#include "runtime/parameterization.h"
 #include "trace/shell.h"
 
 namespace pem::runtime {
@@ -70,6 +71,11 @@ struct PassOptions {
     bool modulate = false;  // colour = (F·G, 1) instead of white
     raster::BlendState blend = raster::BlendState::None();
     std::optional<raster::DepthTest> depthTest;  // LayerDepthTest(...) in a frame with kLensDepth
+    // The map's layout (parameterization.h): other than the cube, the pass's cube coordinates
+    // become the layout's (ToLayout), the sphere map's in the eye space of eyeFromWorld (the
+    // drawing camera's view rotation, as GL's texgen uses the current modelview).
+    Parameterization parameterization = Parameterization::Cube;
+    glm::mat3 eyeFromWorld{1.0f};
 };
 
 // The papers' multipass hardware, with a Z-buffer: the first (outermost) pass of a lens group

@@ -7,49 +7,12 @@
 
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
-#include <numbers>
 
 #include "tests/case_generator.h"
+#include "tests/runtime/layout_directions.h"
 
 namespace pem::runtime {
 namespace {
-
-constexpr double kPi = std::numbers::pi;
-
-// A direction from the notes' formulas, written backwards: (s, t) on chart → unit direction.
-glm::dvec3 Inverse(Parameterization p, glm::dvec2 st, int chart) {
-    switch (p) {
-        case Parameterization::LatLong: {
-            const double phi = (st.x - 0.5) * 2.0 * kPi, theta = st.y * kPi;  // from +Y
-            return {std::sin(theta) * std::sin(phi), std::cos(theta),
-                    -std::sin(theta) * std::cos(phi)};
-        }
-        case Parameterization::Sphere: {
-            // The gazing ball's normal n = (u', v', nz) reflects the view ray (0, 0, -1) into r.
-            const double u = 2.0 * st.x - 1.0, v = 2.0 * st.y - 1.0;
-            const glm::dvec3 n(u, v, std::sqrt(std::max(0.0, 1.0 - u * u - v * v)));
-            const glm::dvec3 in(0.0, 0.0, -1.0);
-            return in - 2.0 * glm::dot(n, in) * n;
-        }
-        case Parameterization::Paraboloid: {
-            // (u', v') = (x, y) / (1 ± z) solved for a unit direction: |z| = (1 - q) / (1 + q).
-            const double u = 2.0 * (2.0 * st.x - chart) - 1.0, v = 2.0 * st.y - 1.0;
-            const double q = u * u + v * v, a = (1.0 - q) / (1.0 + q);
-            return {u * (1.0 + a), v * (1.0 + a), chart == 0 ? a : -a};
-        }
-        case Parameterization::Tennis: {
-            const double phi = (st.x - 0.5) * 1.5 * kPi,
-                         theta = (2.0 * st.y - chart - 0.5) * 0.5 * kPi;
-            // Band 0: y = sin θ, (x, -z) at angle φ; band 1: x = sin θ, (y, z) at angle φ.
-            const double c = std::cos(theta);
-            if (chart == 0) return {c * std::sin(phi), std::sin(theta), -c * std::cos(phi)};
-            return {std::sin(theta), c * std::sin(phi), c * std::cos(phi)};
-        }
-        case Parameterization::Cube:
-            break;
-    }
-    return {};
-}
 
 // The chart's image in atlas coordinates: [x0, x1] × [y0, y1].
 glm::dvec4 ChartBox(Parameterization p, int chart) {
@@ -96,7 +59,7 @@ TEST(Parameterization, DirectionsRoundTripThroughTheirChart) {
             ASSERT_LE(st.x, box.y) << ParameterizationName(p);
             ASSERT_GE(st.y, box.z) << ParameterizationName(p);
             ASSERT_LE(st.y, box.w) << ParameterizationName(p);
-            const glm::dvec3 back = Inverse(p, glm::dvec2(st), chart);
+            const glm::dvec3 back = testing::LayoutInverse(p, glm::dvec2(st), chart);
             worst = std::max(worst, glm::length(back - glm::dvec3(d)));
         }
         EXPECT_LT(worst, 2e-3) << ParameterizationName(p);  // float coordinates near the rim
