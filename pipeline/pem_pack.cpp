@@ -225,7 +225,9 @@ PackStats PackPem(const std::string& pemDir, const std::string& packFile, const 
         last;  // by (group, name)
     json maps = json::array();
     const raster::SamplerState sampler = m.hardware.Sampler();
-    for (int v : m.inferred)
+    for (size_t done = 0; done < m.inferred.size(); ++done) {
+        const int v = m.inferred[done];
+        if (done > 0 && opt.progress) opt.progress(double(done) / double(m.inferred.size()));
         for (int g = 0; g < static_cast<int>(m.groups.size()); ++g)
             for (const std::string& name : MapNamesIn(GroupDir(pemDir, v, g))) {
                 const std::string path = MapPath(pemDir, v, g, name);
@@ -264,6 +266,7 @@ PackStats PackPem(const std::string& pemDir, const std::string& packFile, const 
                 stats.maxError = std::max(stats.maxError, LargestError(tex, decoded));
                 last[{g, name}] = {v, std::move(decoded)};
             }
+    }
     // Step 2: every other file verbatim.
     json files = json::array();
     for (const std::string& rel : OtherFiles(pemDir)) {

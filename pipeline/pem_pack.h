@@ -22,6 +22,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <string>
 #include <tuple>
@@ -35,7 +36,8 @@ namespace pem::pipeline {
 
 struct PackOptions {
     base::ByteCodec codec = base::ByteCodec::Zstd;
-    MapCodeOptions map;  // max error, JPEG 2000 ratio and wavelet (map_coding.h)
+    MapCodeOptions map;                    // max error, JPEG 2000 ratio and wavelet (map_coding.h)
+    std::function<void(double)> progress;  // share of the samples coded, after each one
 };
 
 // What packing measured: the pack against the directory's map files.

@@ -77,11 +77,11 @@ runtime::MapSet LoadMapSet(const PemManifest& m) {
     return set;
 }
 
-trace::Scene LoadPemScene(const PemManifest& m) {
+trace::Scene LoadPemScene(const PemManifest& m, const std::string& source) {
     const std::string path = ResolveScene(m.dir, m.scene, m.sceneGiven);
     if (!std::filesystem::exists(path))
         throw base::InputError(
-            m.dir + "/" + kManifestJson,
+            source.empty() ? m.dir + "/" + kManifestJson : source,
             "scene not found (" + m.scene + " relative to the directory, or " + m.sceneGiven + ")");
     return trace::LoadScene(path);
 }
@@ -101,7 +101,8 @@ std::unique_ptr<runtime::Renderer> OpenPemDirectory(const std::string& pemDir, i
                                                     const std::string& embreeIsa) {
     PemManifest m;
     runtime::MapSet maps;
-    if (IsPemPack(pemDir)) {
+    const bool packed = IsPemPack(pemDir);
+    if (packed) {
         PemPack pack = ReadPemPack(pemDir);
         m = pack.manifest;
         maps = PackMapSet(std::move(pack), pemDir);
@@ -109,7 +110,7 @@ std::unique_ptr<runtime::Renderer> OpenPemDirectory(const std::string& pemDir, i
         m = ReadPemManifest(pemDir);
         maps = LoadMapSet(m);
     }
-    trace::Scene scene = LoadPemScene(m);
+    trace::Scene scene = LoadPemScene(m, packed ? pemDir : "");
     return std::make_unique<runtime::Renderer>(std::move(scene), std::move(maps), threads,
                                                embreeIsa);
 }

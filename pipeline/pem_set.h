@@ -25,8 +25,9 @@ namespace pem::pipeline {
 // The manifest's maps as a renderer sees them (runtime/map_set.h); the cameras as traced.
 runtime::MapSet LoadMapSet(const PemManifest& manifest);
 
-// The scene the directory was made from.
-trace::Scene LoadPemScene(const PemManifest& manifest);
+// The scene the directory was made from; a missing scene is reported against `source` (the
+// pack file) or, when empty, the directory's manifest.json.
+trace::Scene LoadPemScene(const PemManifest& manifest, const std::string& source = "");
 
 // The maps of a packed PEM (pem_pack.h), already decoded; the rest as LoadMapSet.
 runtime::MapSet PackMapSet(PemPack pack, const std::string& packFile);

@@ -162,14 +162,14 @@ TEST(PemPack, LosslessRendersAndUnpacksAsTheDirectory) {
     const PemManifest m = MakeNoisyPemDir(dir);
     const std::string pack = (dir / "p.pempack").string();
     for (base::ByteCodec codec : {base::ByteCodec::Zstd, base::ByteCodec::Xz}) {
-        const PackStats s = PackPem(m.dir, pack, {codec, {}});
+        const PackStats s = PackPem(m.dir, pack, {codec, {}, {}});
         EXPECT_EQ(s.maps, 2);
         EXPECT_EQ(s.maxError, 0);
         EXPECT_TRUE(IsPemPack(pack));
         EXPECT_EQ(RenderPem(pack), RenderPem(m.dir));
     }
     // JPEG 2000 lossless (ratio 1) renders the same frame too.
-    EXPECT_EQ(PackPem(m.dir, pack, {base::ByteCodec::Zstd, {0, 1.0}}).maxError, 0);
+    EXPECT_EQ(PackPem(m.dir, pack, {base::ByteCodec::Zstd, {0, 1.0}, {}}).maxError, 0);
     EXPECT_EQ(RenderPem(pack), RenderPem(m.dir));
     // Unpacked: the same maps (as 8-bit copies), the same other files, a manifest that finds the
     // scene from the new place.
@@ -186,7 +186,7 @@ TEST(PemPack, LossyKeepsTheBound) {
     const fs::path dir = FreshDir("pem_pack_lossy");
     const PemManifest m = MakeNoisyPemDir(dir);
     const std::string pack = (dir / "p.pempack").string();
-    const PackStats s = PackPem(m.dir, pack, {base::ByteCodec::Zstd, {4, 0.0}});
+    const PackStats s = PackPem(m.dir, pack, {base::ByteCodec::Zstd, {4, 0.0}, {}});
     EXPECT_LE(s.maxError, 4);
     EXPECT_GT(s.maxError, 0);
     const PemPack p = ReadPemPack(pack);

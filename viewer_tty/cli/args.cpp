@@ -54,6 +54,13 @@ void AddProfileOption(CLI::App* sub, std::string* profile) {
         });
 }
 
+void AddMapSizeOptions(CLI::App* sub, int* res, int* maxRes) {
+    sub->add_option("--res", *res, "cube face size N (power of two)");
+    sub->add_option("--max-res", *maxRes,
+                    "each map's face size from a test rendering at its sample, up to N (power of "
+                    "two, >= --res; PEM §4 EM resolution)");
+}
+
 void AddMapHardwareOptions(CLI::App* sub, runtime::MapHardware* hardware) {
     AddProfileOption(sub, &hardware->profile);
     sub->add_option("--anisotropy", hardware->maxAnisotropy,

@@ -31,6 +31,10 @@ void AddProfileOption(CLI::App* sub, std::string* profile);
 // --profile and --anisotropy N (the lens maps' GL_TEXTURE_MAX_ANISOTROPY, 1..16) of inference.
 void AddMapHardwareOptions(CLI::App* sub, runtime::MapHardware* hardware);
 
+// --res N and --max-res N: the maps' face size, and the largest a test rendering at each sample
+// may choose (infer, bake and demo).
+void AddMapSizeOptions(CLI::App* sub, int* res, int* maxRes);
+
 // pemref's version ("0.1.0", the project's CMake version).
 std::string PemrefVersion();
 // It and every profile's model (`pemref --version`).

@@ -33,11 +33,7 @@ void AddBakeCommand(CLI::App& app) {
     sub->add_option("scene", o.trace.scene, "scene (.gltf/.glb)")->required();
     sub->add_option("--out", o.outDir, "output directory (DIR/trace, DIR/pem)")->required();
     sub->add_option("--views", o.trace.views, "camera | circle:N:STEP_DEG");
-    sub->add_option("--res", o.infer.res, "cube face size N (power of two)");
-    sub->add_option(
-        "--max-res", o.infer.maxRes,
-        "each map's face size from a test rendering at its sample, up to N (power of two, "
-        ">= --res; PEM §4 EM resolution)");
+    AddMapSizeOptions(sub, &o.infer.res, &o.infer.maxRes);
     sub->add_option("--size", a.size, "image size WxH");
     sub->add_option("--spp", o.trace.spp, "K: K×K supersamples per pixel")
         ->check(CLI::Range(1, 16));

@@ -38,9 +38,7 @@ void AddDemoCommand(CLI::App& app) {
     sub->add_option("--out", a.out, "output directory");
     sub->add_option("--scene", a.scene, "scene (default: the bundled scene (a))");
     sub->add_option("--size", a.size, "image size WxH");
-    sub->add_option("--res", a.res, "cube face size N");
-    sub->add_option("--max-res", a.maxRes,
-                    "each map's face size from a test rendering at its sample, up to N");
+    AddMapSizeOptions(sub, &a.res, &a.maxRes);
     sub->add_option("--threads", a.threads, "worker threads")->check(CLI::Range(1, 256));
     sub->add_flag("--quiet", a.quiet, "no progress lines");
 }

@@ -55,11 +55,7 @@ void AddInferCommand(CLI::App& app) {
         "infer", "infer layered environment maps (all MIP levels) from a pemref trace directory");
     sub->add_option("trace_dir", o.traceDir, "output directory of pemref trace")->required();
     sub->add_option("--out", o.outDir, "PEM directory")->required();
-    sub->add_option("--res", o.res, "cube face size N (power of two)");
-    sub->add_option(
-        "--max-res", o.maxRes,
-        "each map's face size from a test rendering at its sample, up to N (power of two, "
-        ">= --res; PEM §4 EM resolution)");
+    AddMapSizeOptions(sub, &o.res, &o.maxRes);
     sub->add_option("--threads", o.threads, "worker threads")->check(CLI::Range(1, 256));
     AddMapHardwareOptions(sub, &o.hardware);
     sub->add_option("--views", a.views, "viewpoint samples to infer, e.g. 0,2 (default: all)");

@@ -8,6 +8,7 @@
 #include "base/input_error.h"
 #include "pipeline/map_coding.h"
 #include "pipeline/pem_pack.h"
+#include "viewer_tty/tty/progress.h"
 
 namespace pem::cli {
 namespace {
@@ -47,7 +48,7 @@ void AddPackCommands(CLI::App& app) {
                      "JPEG 2000 wavelet of --ratio > 1: 97 (irreversible, smaller) or 53 "
                      "(integer decoding)")
         ->check(CLI::IsMember({"97", "53"}));
-    pack->add_flag("--quiet", a.quiet, "no summary line");
+    pack->add_flag("--quiet", a.quiet, "no progress or summary line");
     CLI::App* unpack = app.add_subcommand("unpack", "a packed PEM as a PEM directory again");
     unpack->add_option("pack", a.in, "the packed PEM")->required();
     unpack->add_option("-o,--out", a.out, "the PEM directory to make (must not exist)")->required();
@@ -62,7 +63,10 @@ int RunPackCommand() {
     opt.map.ratio = a.ratio;
     opt.map.wavelet =
         a.wavelet == "53" ? base::J2kWavelet::Reversible53 : base::J2kWavelet::Irreversible97;
+    tty::ProgressLine line("pemref pack", a.quiet);
+    if (line.Enabled()) opt.progress = [&line](double f) { line.Update(f); };
     const pipeline::PackStats s = pipeline::PackPem(a.in, a.out, opt);
+    line.Finish();
     if (!a.quiet)
         std::printf(
             "%s: %d maps of %d samples, %llu bytes (%.0f per sample), max error %d; "

@@ -61,6 +61,14 @@ std::vector<PackRow> StudyPacks(const std::string& pemDir, const std::string& sc
                                 const std::function<void(const std::string&)>& log) {
     std::vector<PackRow> rows;
     const std::string pack = base::TemporaryPath(scratchDir + "/study.pempack");
+    // The scratch pack goes when the study ends, also when a setting fails.
+    struct Remove {
+        const std::string& path;
+        ~Remove() {
+            std::error_code ec;
+            std::filesystem::remove(path, ec);
+        }
+    } remove{pack};
     for (const Setting& s : Settings()) {
         if (log) log("packed PEM " + s.name);
         // Step 1: pack, timed.
@@ -87,8 +95,6 @@ std::vector<PackRow> StudyPacks(const std::string& pemDir, const std::string& sc
             }
         rows.push_back(std::move(row));
     }
-    std::error_code ec;
-    std::filesystem::remove(pack, ec);
     return rows;
 }
 
