@@ -152,9 +152,12 @@ glm::vec2 ChartCoord(Parameterization p, const glm::vec3& dir, int chart,
 raster::Pass ToLayout(const raster::Pass& cubePass, int unit, Parameterization p,
                       const glm::mat3& eyeFromWorld) {
     if (p == Parameterization::Cube) return cubePass;
-    raster::Pass out = cubePass;
-    out.indices.clear();
-    out.vertices.clear();
+    // Step: the pass's state without its geometry (not copied only to be cleared).
+    raster::Pass out;
+    out.numUnits = cubePass.numUnits;
+    out.texture = cubePass.texture;
+    out.blend = cubePass.blend;
+    out.depthTest = cubePass.depthTest;
     const size_t corners = static_cast<size_t>(cubePass.NumTriangles()) * 3;
     out.vertices.reserve(corners);
     auto corner = [&](size_t k) {

@@ -11,6 +11,7 @@
 #include <glm/glm.hpp>
 #include <numbers>
 
+#include "raster/cube_lookup.h"
 #include "raster/frame.h"
 #include "runtime/parameterization.h"
 
@@ -59,14 +60,6 @@ inline int ChartAt(Parameterization p, glm::dvec2 st) {
     return 0;
 }
 
-// Direction of the centre of texel (i, j) of a cube face of size n (GL table 8.19 inverted).
-inline glm::dvec3 CubeTexelDirection(int face, int i, int j, int n) {
-    const double sc = 2.0 * (i + 0.5) / n - 1.0, tc = 2.0 * (j + 0.5) / n - 1.0;
-    const glm::dvec3 d[6] = {{1, -tc, -sc}, {-1, -tc, sc}, {sc, 1, tc},
-                             {sc, -1, -tc}, {sc, -tc, 1},  {-sc, -tc, -1}};
-    return glm::normalize(d[face]);
-}
-
 // A map of layout `p` at `size`, every level's texel (bytes) = env(world direction of its
 // centre); worldFromEye turns the sphere map's eye-space directions into world ones.
 inline raster::Texture FilledMap(Parameterization p, int size,
@@ -80,7 +73,11 @@ inline raster::Texture FilledMap(Parameterization p, int size,
                 for (int i = 0; i < w; ++i) {
                     glm::dvec3 d;
                     if (p == Parameterization::Cube) {
-                        d = CubeTexelDirection(f, i, j, w);
+                        // The texel centre through GL's face table (raster/cube_lookup.h).
+                        const raster::Vec3f c =
+                            raster::FaceDirection(f, static_cast<float>(2.0 * (i + 0.5) / w - 1.0),
+                                                  static_cast<float>(2.0 * (j + 0.5) / h - 1.0));
+                        d = glm::normalize(glm::dvec3(c[0], c[1], c[2]));
                     } else {
                         const glm::dvec2 st((i + 0.5) / w, (j + 0.5) / h);
                         d = LayoutInverse(p, st, ChartAt(p, st));
