@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// pem_file.cpp — OpenEXR cube-map writer and reader (pem_file.h).
+// pem_file.cpp — OpenEXR environment-map writer and reader (pem_file.h).
 #include "infer/pem_file.h"
 
 #include <ImfChannelList.h>
@@ -86,7 +86,7 @@ const std::array<FaceTransform, 6>& FaceTransforms() {
 }
 
 // The mean RGBA of the coarsest level (the fill of levels the map does not have).
-std::array<float, kChannels> CoarsestMean(const CubeMapF& map) {
+std::array<float, kChannels> CoarsestMean(const EnvMapF& map) {
     const std::vector<float>& level = map.levels.back();
     std::array<double, kChannels> sum{};
     for (size_t k = 0; k < level.size(); ++k) sum[k % kChannels] += static_cast<double>(level[k]);
@@ -97,15 +97,16 @@ std::array<float, kChannels> CoarsestMean(const CubeMapF& map) {
 }
 
 // The interleaved RGBA image of EXR level l (w x h).
-std::vector<float> LevelImage(const CubeMapF& map, int l, int w, int h,
+std::vector<float> LevelImage(const EnvMapF& map, int l, int w, int h,
                               const std::array<float, kChannels>& fill) {
     std::vector<float> px(static_cast<size_t>(w) * static_cast<size_t>(h) * kChannels);
     if (l >= map.NumLevels()) {
         for (size_t k = 0; k < px.size(); ++k) px[k] = fill[k % kChannels];
         return px;
     }
-    const int n = map.LevelSize(l);
     const std::vector<float>& level = map.levels[static_cast<size_t>(l)];
+    if (!map.IsCube()) return level;  // a 2D level is the EXR level, rows top-down
+    const int n = map.LevelSize(l);
     for (int f = 0; f < 6; ++f)
         for (int j = 0; j < n; ++j)
             for (int i = 0; i < n; ++i) {
@@ -136,26 +137,35 @@ bool IsPowerOfTwo(int n) {
     return n > 0 && (n & (n - 1)) == 0;
 }
 
-void CheckWritable(const CubeMapF& map) {
-    if (!IsPowerOfTwo(map.size) || map.levels.empty())
-        throw std::invalid_argument("WriteCubeMapExr: size must be a power of two with >= 1 level");
-    for (int l = 0; l < map.NumLevels(); ++l) {
-        const size_t n = static_cast<size_t>(map.LevelSize(l));
-        if (map.levels[static_cast<size_t>(l)].size() != 6 * n * n * kChannels ||
-            (l > 0 && n == 1 && map.LevelSize(l - 1) == 1))
-            throw std::invalid_argument("WriteCubeMapExr: level sizes differ from the cube chain");
-    }
+// Levels of the MIP chain of a w x h texture (GL's and OpenEXR's ROUND_DOWN chain).
+int ChainLevels(int w, int h) {
+    int levels = 1;
+    for (int m = std::max(w, h); m > 1; m >>= 1) ++levels;
+    return levels;
 }
 
-void WriteExr(const CubeMapF& map, const std::string& path, int threads) {
-    // Header: N x 6N, float RGBA, cube envmap, tiled with every ROUND_DOWN MIP level.
-    Imf::Header header(map.size, 6 * map.size);
+void CheckWritable(const EnvMapF& map) {
+    if (!IsPowerOfTwo(map.size) || !IsPowerOfTwo(map.LevelHeight(0)) || map.levels.empty())
+        throw std::invalid_argument(
+            "WriteEnvMapExr: width and height must be powers of two with >= 1 level");
+    const int chain =
+        map.IsCube() ? ChainLevels(map.size, map.size) : ChainLevels(map.size, map.LevelHeight(0));
+    if (map.NumLevels() > chain)
+        throw std::invalid_argument("WriteEnvMapExr: more levels than the MIP chain has");
+    for (int l = 0; l < map.NumLevels(); ++l)
+        if (map.levels[static_cast<size_t>(l)].size() != map.LevelTexels(l) * kChannels)
+            throw std::invalid_argument("WriteEnvMapExr: level sizes differ from the MIP chain");
+}
+
+void WriteExr(const EnvMapF& map, const std::string& path, int threads) {
+    // Header: N x 6N (a cube envmap) or W x H, float RGBA, tiled with every ROUND_DOWN MIP level.
+    Imf::Header header(map.size, map.IsCube() ? 6 * map.size : map.LevelHeight(0));
     for (const char* name : kChannelNames) header.channels().insert(name, Imf::Channel(Imf::FLOAT));
     header.setTileDescription(
         Imf::TileDescription(kTileSize, kTileSize, Imf::MIPMAP_LEVELS, Imf::ROUND_DOWN));
     header.compression() = Imf::ZIP_COMPRESSION;
     header.zipCompressionLevel() = 1;
-    Imf::addEnvmap(header, Imf::ENVMAP_CUBE);
+    if (map.IsCube()) Imf::addEnvmap(header, Imf::ENVMAP_CUBE);
     header.insert(kLevelsAttribute, Imf::IntAttribute(map.NumLevels()));
     if (threads > 1 && Imf::globalThreadCount() < threads) Imf::setGlobalThreadCount(threads);
     Imf::TiledOutputFile out(path.c_str(), header, threads > 1 ? threads : 0);
@@ -168,6 +178,33 @@ void WriteExr(const CubeMapF& map, const std::string& path, int threads) {
         out.setFrameBuffer(RgbaFrameBuffer(&px, dw));
         out.writeTiles(0, out.numXTiles(l) - 1, 0, out.numYTiles(l) - 1, l);
     }
+}
+
+// One level of an open file as interleaved RGBA (rows top-down) and its width.
+std::vector<float> ReadLevelPixels(Imf::TiledInputFile& in, int l, int* width) {
+    const Imath::Box2i ldw = in.dataWindowForLevel(l);
+    *width = ldw.max.x - ldw.min.x + 1;
+    std::vector<float> px(static_cast<size_t>(*width) *
+                          static_cast<size_t>(ldw.max.y - ldw.min.y + 1) * kChannels);
+    in.setFrameBuffer(RgbaFrameBuffer(&px, ldw));
+    in.readTiles(0, in.numXTiles(l) - 1, 0, in.numYTiles(l) - 1, l);
+    return px;
+}
+
+// Cube level l from its EXR level image (the face layout undone).
+std::vector<float> CubeLevel(const std::vector<float>& px, int w, int ln) {
+    std::vector<float> level(static_cast<size_t>(6 * ln * ln * kChannels));
+    for (int f = 0; f < 6; ++f)
+        for (int j = 0; j < ln; ++j)
+            for (int i = 0; i < ln; ++i) {
+                const ExrPixel p = ExrPixelOf(f, i, j, ln);
+                const size_t src =
+                    (static_cast<size_t>(p.y) * static_cast<size_t>(w) + static_cast<size_t>(p.x)) *
+                    kChannels;
+                const size_t dst = static_cast<size_t>(((f * ln + j) * ln + i) * kChannels);
+                for (size_t c = 0; c < kChannels; ++c) level[dst + c] = px[src + c];
+            }
+    return level;
 }
 
 }  // namespace
@@ -183,7 +220,7 @@ ExrPixel ExrPixelOf(int face, int i, int j, int n) {
     return {p.x, face * n + p.y};
 }
 
-void WriteCubeMapExr(const CubeMapF& map, const std::string& path, int threads) {
+void WriteEnvMapExr(const EnvMapF& map, const std::string& path, int threads) {
     CheckWritable(map);
     base::WriteAtomically(path, [&](const std::string& tmp) { WriteExr(map, tmp, threads); });
 }
@@ -201,47 +238,35 @@ ExrLevelImage ReadExrLevel(const std::string& path, int level) {
     return img;
 }
 
-CubeMapF ReadCubeMapExr(const std::string& path) {
+EnvMapF ReadEnvMapExr(const std::string& path) {
     base::CheckExrHeader(path);
     Imf::TiledInputFile in(path.c_str());
     const Imf::Header& header = in.header();
-    // Check: a mip-mapped cube map of N x 6N.
-    if (!Imf::hasEnvmap(header) || Imf::envmap(header) != Imf::ENVMAP_CUBE)
-        throw std::runtime_error(path + ": not a cube environment map");
+    // Check: a mip-mapped cube map of N x 6N, or a 2D map of W x H, powers of two.
+    const bool cube = Imf::hasEnvmap(header);
+    if (cube && Imf::envmap(header) != Imf::ENVMAP_CUBE)
+        throw std::runtime_error(path + ": an environment map, but not a cube");
     const Imath::Box2i dw = header.dataWindow();
     base::CheckExrSize(path, int64_t{dw.max.x} - dw.min.x + 1, int64_t{dw.max.y} - dw.min.y + 1);
-    const int n = dw.max.x - dw.min.x + 1;
-    if (dw.max.y - dw.min.y + 1 != 6 * n || !IsPowerOfTwo(n))
+    const int w = dw.max.x - dw.min.x + 1, h = dw.max.y - dw.min.y + 1;
+    if (cube && (h != 6 * w || !IsPowerOfTwo(w)))
         throw std::runtime_error(path + ": data window is not N x 6N with N a power of two");
+    if (!cube && (!IsPowerOfTwo(w) || !IsPowerOfTwo(h)))
+        throw std::runtime_error(path + ": data window is not W x H with powers of two");
     if (in.levelMode() != Imf::MIPMAP_LEVELS) throw std::runtime_error(path + ": not mip-mapped");
-    int levels = 1;
-    while ((n >> levels) >= 1) ++levels;  // log2(N) + 1 cube levels
+    int levels = cube ? ChainLevels(w, w) : ChainLevels(w, h);  // the texture's MIP chain
     if (const auto* attr = header.findTypedAttribute<Imf::IntAttribute>(kLevelsAttribute))
         levels = std::min(levels, attr->value());
     if (levels < 1 || levels > in.numLevels()) throw std::runtime_error(path + ": missing levels");
-    // Read each cube level and undo the face layout.
-    CubeMapF map;
-    map.size = n;
+    // Read each level (a cube's with its face layout undone).
+    EnvMapF map;
+    map.kind = cube ? raster::TextureKind::Cube : raster::TextureKind::Tex2D;
+    map.size = w;
+    map.height = cube ? w : h;
     for (int l = 0; l < levels; ++l) {
-        const Imath::Box2i ldw = in.dataWindowForLevel(l);
-        const int w = ldw.max.x - ldw.min.x + 1;
-        std::vector<float> px(static_cast<size_t>(w) *
-                              static_cast<size_t>(ldw.max.y - ldw.min.y + 1) * kChannels);
-        in.setFrameBuffer(RgbaFrameBuffer(&px, ldw));
-        in.readTiles(0, in.numXTiles(l) - 1, 0, in.numYTiles(l) - 1, l);
-        const int ln = map.LevelSize(l);
-        std::vector<float> level(static_cast<size_t>(6 * ln * ln * kChannels));
-        for (int f = 0; f < 6; ++f)
-            for (int j = 0; j < ln; ++j)
-                for (int i = 0; i < ln; ++i) {
-                    const ExrPixel p = ExrPixelOf(f, i, j, ln);
-                    const size_t src = (static_cast<size_t>(p.y) * static_cast<size_t>(w) +
-                                        static_cast<size_t>(p.x)) *
-                                       kChannels;
-                    const size_t dst = static_cast<size_t>(((f * ln + j) * ln + i) * kChannels);
-                    for (size_t c = 0; c < kChannels; ++c) level[dst + c] = px[src + c];
-                }
-        map.levels.push_back(std::move(level));
+        int lw = 0;
+        std::vector<float> px = ReadLevelPixels(in, l, &lw);
+        map.levels.push_back(cube ? CubeLevel(px, lw, map.LevelSize(l)) : std::move(px));
     }
     return map;
 }

@@ -1,24 +1,29 @@
 // SPDX-License-Identifier: MIT
-// pem_file.h — the inferred environment map on disk: a tiled, mip-mapped OpenEXR cube map
-// (ImfEnvmap cube layout, float RGBA), readable by OpenEXR's tools (exrheader, exrenvmap).
+// pem_file.h — the inferred environment map on disk: a tiled, mip-mapped OpenEXR file, float
+// RGBA: a cube map in ImfEnvmap's cube layout (readable by exrheader, exrenvmap), or a 2D map
+// (the lat-long, sphere, paraboloid and tennis layouts of runtime/parameterization.h) as a plain
+// W x H image whose level l is the texture's level l, texel (i, j) at column i, row j from the
+// top, without an envmap attribute (OpenEXR's lat-long convention is not GL's texgen's; which
+// layout a 2D map is, is the PEM directory's manifest.json's to say).
 //
-// Layout (docs/deps.md §5): level 0 is N wide by 6N tall, the faces stacked top to bottom in the
+// Cubes (docs/deps.md §5): level 0 is N wide by 6N tall, the faces stacked top to bottom in the
 // order +X, -X, +Y, -Y, +Z, -Z, each face oriented as ImfEnvmap.h draws it. A texel keeps its
 // direction: our texel (face, i, j) goes to the EXR pixel whose CubeMap::direction is the
 // direction of that texel's centre in GL's face table (the per-face flips/transposition are
 // derived once from OpenEXR's helpers, not written by hand). OpenEXR's mip chain (ROUND_DOWN)
 // has floor(log2(6N)) + 1 levels; every level is written. Levels that are cube maps but absent
 // from the map, and the degenerate tail levels (1 x 3, 1 x 1: not cube maps), hold the mean of
-// the map's coarsest level. The attribute "pemrefLevels" records how many levels are real; the
-// reader returns exactly those (all cube levels for files without it). The file appears
+// the map's coarsest level (a 2D map's chain is the texture's: absent levels only).
+// The attribute "pemrefLevels" records how many levels are real; the reader returns exactly
+// those (every level of the texture's chain for files without it). The file appears
 // atomically (base/atomic_file.h), so readers never see a half-written file.
-// Not here: the 8-bit copy (cube_map.h ToTexture8; PNG/case files are viewer_tty's).
+// Not here: the 8-bit copy (env_map.h ToTexture8; PNG/case files are viewer_tty's).
 #pragma once
 
 #include <string>
 #include <vector>
 
-#include "infer/cube_map.h"
+#include "infer/env_map.h"
 
 namespace pem::infer {
 
@@ -27,8 +32,9 @@ int ExrLevelCount(int size);
 
 // ZIP compression at zlib level 1 (fast; any OpenEXR reader reads it). `threads` > 1 lets
 // OpenEXR compress tiles in parallel (the file's bytes do not depend on it).
-void WriteCubeMapExr(const CubeMapF& map, const std::string& path, int threads = 1);
-CubeMapF ReadCubeMapExr(const std::string& path);
+void WriteEnvMapExr(const EnvMapF& map, const std::string& path, int threads = 1);
+// A cube when the file has a cube envmap attribute, else a 2D map.
+EnvMapF ReadEnvMapExr(const std::string& path);
 
 // One level of the file as stored (RGBA floats, rows top-down), for checks and tools.
 struct ExrLevelImage {

@@ -85,7 +85,8 @@ size_t WriteOutputs(const BakeJobOptions& o, const TraceManifest& trace, int n) 
     }
     WriteInferJson(rec);
     WritePemManifest(PemManifestFor(trace, rec.dir, o.infer.res, o.infer.hdr, {}, o.infer.hardware,
-                                    std::max(o.infer.res, o.infer.maxRes)));
+                                    std::max(o.infer.res, o.infer.maxRes),
+                                    o.infer.parameterization));
     return rec.maps.size();
 }
 

@@ -15,7 +15,7 @@
 #include "base/atomic_file.h"
 #include "base/input_error.h"
 #include "base/matrix_market.h"
-#include "infer/cube_map.h"
+#include "infer/env_map.h"
 #include "infer/pem_file.h"
 #include "pipeline/layout.h"
 #include "pipeline/map_files.h"
@@ -54,7 +54,7 @@ double Since(Clock::time_point t0) {
 
 // Files of one map --------------------------------------------------------------------------
 
-void WriteMapFiles(const infer::CubeMapF& map, const raster::SamplerState& sampler,
+void WriteMapFiles(const infer::EnvMapF& map, const raster::SamplerState& sampler,
                    const infer::SolveResult& res, const std::string& stem, int threads) {
     WriteMapImages(map, infer::ToTexture8(map, sampler), stem, threads);
     infer::WriteLogCsv(res.log, stem + ".csv");
@@ -108,19 +108,24 @@ void AppendRows(raster::RenderingMatrix* a, const raster::RenderingMatrix& b) {
 }
 
 raster::Frame UnknownFrame(int width, int height, int res, const raster::SamplerState& sampler,
-                           const MapInput& in) {
+                           runtime::Parameterization parameterization, const MapInput& in) {
     raster::Frame frame;
     frame.width = width;
     frame.height = height;
     frame.depthClamp = true;
     frame.depth = runtime::kLensDepth;
-    raster::Texture tex;
-    tex.kind = raster::TextureKind::Cube;
-    tex.width = tex.height = res;
-    tex.sampler = sampler;
-    for (int l = 0; (res >> l) >= 1; ++l)
-        tex.levels.emplace_back(static_cast<size_t>(6 * (res >> l) * (res >> l) * 4), 0);
-    frame.textures.push_back(std::move(tex));
+    if (parameterization == runtime::Parameterization::Cube) {  // any power of two, 1 included
+        raster::Texture tex;
+        tex.kind = raster::TextureKind::Cube;
+        tex.width = tex.height = res;
+        tex.sampler = sampler;
+        for (int l = 0; (res >> l) >= 1; ++l)
+            tex.levels.emplace_back(static_cast<size_t>(6 * (res >> l) * (res >> l) * 4), 0);
+        frame.textures.push_back(std::move(tex));
+    } else {
+        frame.textures.push_back(
+            runtime::EmptyTexture(runtime::LayoutOf(parameterization, res), sampler));
+    }
     if (in.depthPass) frame.passes.push_back(*in.depthPass);
     frame.passes.push_back(in.pass);
     return frame;
@@ -206,7 +211,8 @@ StackedRows StackRows(const std::vector<MapInput>& inputs, int w, int h, int k, 
     raster::RenderOptions ro = raster::ProfileNamed(opt.hardware.profile).matrix;
     ro.threads = opt.threads;
     for (size_t i = 0; i < inputs.size(); ++i) {
-        raster::Frame f = UnknownFrame(k * w, k * h, res, opt.hardware.Sampler(), inputs[i]);
+        raster::Frame f = UnknownFrame(k * w, k * h, res, opt.hardware.Sampler(),
+                                       opt.parameterization, inputs[i]);
         std::vector<uint32_t> cells = CoveredCells(inputs[i]);
         raster::RenderingMatrix a =
             KeepRows(raster::BuildRenderingMatrix(raster::PreparedFrame(f), ro), cells);
@@ -240,7 +246,8 @@ std::vector<double> LevelsAccessed(const std::vector<MapInput>& inputs, int w, i
     double total = 0.0;
     for (const MapInput& in : inputs) {
         if (!in.own) continue;
-        const raster::Frame f = UnknownFrame(k * w, k * h, maxRes, sampler, in);
+        const raster::Frame f =
+            UnknownFrame(k * w, k * h, maxRes, sampler, opt.parameterization, in);
         const raster::TexelIndexer index(f.textures);
         const std::vector<uint32_t> cells = CoveredCells(in);
         const raster::RenderingMatrix a =
@@ -282,7 +289,7 @@ int ResolutionAccessed(const std::vector<double>& share, int minRes, int maxRes)
 
 // The 8-bit copy of a map through the target profile on the sample's own rows of the mask,
 // subpixel by subpixel: the error the hardware shows.
-double Rmse8(const infer::CubeMapF& m, const StackedRows& s, const infer::LinearSystem& sys,
+double Rmse8(const infer::EnvMapF& m, const StackedRows& s, const infer::LinearSystem& sys,
              const std::string& profile, int threads) {
     const raster::Texture tex8 = infer::ToTexture8(m, s.frame.textures[0].sampler);
     raster::RenderOptions fo = raster::ProfileNamed(profile).options;
@@ -343,7 +350,7 @@ MapReport SolveMap(const std::vector<MapInput>& inputs, const InferJobOptions& o
     // Step 3: the texels no pixel samples, and the range.
     const auto tFill = Clock::now();
     const Vector full = infer::FillUnobserved(sys, res.x, &rep.filledTexels);
-    const infer::CubeMapF map = infer::CubeMapFromSolution(full, sys.layout);
+    const infer::EnvMapF map = infer::EnvMapFromSolution(full, sys.layout);
     rep.texelMin = rep.texelMax = full.empty() ? 0.0 : full[0];
     for (double v : full)
         rep.texelMin = std::min(rep.texelMin, v), rep.texelMax = std::max(rep.texelMax, v);
@@ -357,7 +364,7 @@ MapReport SolveMap(const std::vector<MapInput>& inputs, const InferJobOptions& o
             infer::SolveDirect(sys, infer::InitialGuess(sys), so.columnFloor);
         rep.directSeconds = d.seconds;
         rep.directRmse8 =
-            Rmse8(infer::CubeMapFromSolution(infer::FillUnobserved(sys, d.x), sys.layout), s, sys,
+            Rmse8(infer::EnvMapFromSolution(infer::FillUnobserved(sys, d.x), sys.layout), s, sys,
                   opt.hardware.profile, opt.threads);
     }
     // Step 5: files.
@@ -438,15 +445,19 @@ std::vector<ViewGeometry> SolveGeometry(const Context& c, int v, const runtime::
 
 // The maps of one lens group ---------------------------------------------------------------
 
-// A map's texgen pass as the renderers' first pass draws it: the visible surface only.
-runtime::PassOptions DepthTested() {
+// A map's texgen pass as the renderers' first pass draws it from `camera`: the visible surface
+// only, with the maps' layout (the sphere map's coordinates in that camera's eye space).
+runtime::PassOptions DepthTested(const InferJobOptions& opt, const raster::Camera& camera) {
     runtime::PassOptions po;
     po.depthTest = runtime::LayerDepthTest(true);
+    po.parameterization = opt.parameterization;
+    po.eyeFromWorld = runtime::EyeFromWorld(camera);
     return po;
 }
 
 // Observations of a map on `shell`: per term and view, images[term][view] as the target.
-std::vector<MapInput> Observations(const std::vector<ViewGeometry>& geo, int terms, int v,
+std::vector<MapInput> Observations(const InferJobOptions& opt, const std::vector<ViewGeometry>& geo,
+                                   int terms, int v,
                                    const std::vector<std::vector<const trace::FloatImage*>>& images,
                                    const trace::Shell& shell, const glm::vec3& emOrigin) {
     std::vector<MapInput> inputs;
@@ -461,7 +472,7 @@ std::vector<MapInput> Observations(const std::vector<ViewGeometry>& geo, int ter
                         vg.view == v};
             in.pass = runtime::LayerPass(runtime::MeshOf(vg.lp.tess), vg.order,
                                          runtime::ShellCoords(vg.exits[term], shell, emOrigin),
-                                         vg.exits[term], vg.vp, DepthTested());
+                                         vg.exits[term], vg.vp, DepthTested(opt, vg.camera));
             inputs.push_back(std::move(in));
         }
     return inputs;
@@ -500,14 +511,15 @@ void SolveLayerMaps(Context& c, int v, const runtime::LensGroupEm& g,
             for (const ViewGeometry& vg : geo)
                 images[static_cast<size_t>(t)].push_back(&owned.emplace_back(ReadGroupSamples(
                     c.tm, vg.view, g.index, LayerImageName(static_cast<int>(l), t))));
-        Solve(c, Observations(geo, g.Terms(), v, images, g.layers[l].shell, g.emOrigin), odir,
-              Report(v, g, static_cast<int>(l), term, LayerMapName(static_cast<int>(l))));
+        Solve(c, Observations(c.opt, geo, g.Terms(), v, images, g.layers[l].shell, g.emOrigin),
+              odir, Report(v, g, static_cast<int>(l), term, LayerMapName(static_cast<int>(l))));
     }
     if (!c.opt.single) return;
     std::vector<std::vector<const trace::FloatImage*>> images(2);
     for (int t = 0; t < g.Terms(); ++t)
         for (const ViewGeometry& vg : geo) images[static_cast<size_t>(t)].push_back(&vg.cov[t]);
-    Solve(c, Observations(geo, g.Terms(), v, images, runtime::SingleLayerShell(g), g.emOrigin),
+    Solve(c,
+          Observations(c.opt, geo, g.Terms(), v, images, runtime::SingleLayerShell(g), g.emOrigin),
           odir, Report(v, g, 0, term, "single"));
 }
 
@@ -533,7 +545,7 @@ void SolvePemMaps(Context& c, int v, const runtime::LensGroupEm& g, const std::s
     for (int which = convex ? 1 : 0; which < 2; ++which) {
         const trace::Shell& shell = which == 0 ? g.localShell : g.distantShell;
         MapInput in{which == 0 ? &local : &distant, &distant, {}, {}, 1.0, true};
-        runtime::PassOptions po = DepthTested();
+        runtime::PassOptions po = DepthTested(c.opt, c.cameras[static_cast<size_t>(v)]);
         if (which == 0) {
             in.depthPass = runtime::DepthOnlyPass(m.Pass(), m.order, m.viewProjection);
             po.depthTest = runtime::LayerDepthTest(false);
@@ -584,6 +596,9 @@ InferJobResult RunInferJob(const InferJobOptions& opt) {
     if (opt.res < 1 || (opt.res & (opt.res - 1)) != 0 || opt.res > 4096)
         throw base::InputError("--res " + std::to_string(opt.res),
                                "expected a power of two in [1, 4096]");
+    if (opt.parameterization != runtime::Parameterization::Cube && opt.res < 2)
+        throw base::InputError("--res " + std::to_string(opt.res),
+                               "a 2D layout needs a size of at least 2");
     if (opt.maxRes != 0 &&
         (opt.maxRes < opt.res || (opt.maxRes & (opt.maxRes - 1)) != 0 || opt.maxRes > 4096))
         throw base::InputError("--max-res " + std::to_string(opt.maxRes),
@@ -626,7 +641,7 @@ void WriteInferOutputs(const InferJobOptions& o, const InferJobResult& r) {
     rec.leftOut = r.leftOut;
     WriteInferJson(rec);
     WritePemManifest(PemManifestFor(r.trace, o.outDir, o.res, o.hdr, o.views, o.hardware,
-                                    std::max(o.res, o.maxRes)));
+                                    std::max(o.res, o.maxRes), o.parameterization));
 }
 
 }  // namespace pem::pipeline

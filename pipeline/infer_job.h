@@ -76,6 +76,8 @@ struct InferJobOptions {
     // The target hardware: profile, the maps' sampler and radiance scale.
     runtime::MapHardware hardware{.radianceScale = kDefaultRadianceScale,
                                   .lodBias = kDefaultLodBias};
+    // The maps' layout (runtime/parameterization.h); a 2D layout needs res >= 2.
+    runtime::Parameterization parameterization = runtime::Parameterization::Cube;
     bool hdr = false;              // float radiance, bounds [0, inf)
     double tessT = 5.0;            // tessellation t in subpixels (1 / spp pixels)
     std::vector<int> views;        // empty: all

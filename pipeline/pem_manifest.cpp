@@ -32,6 +32,7 @@ json ManifestJson(const PemManifest& m) {
             {"max_anisotropy", m.hardware.maxAnisotropy},
             {"radiance_scale", m.hardware.radianceScale},
             {"lod_bias", m.hardware.lodBias},
+            {"parameterization", runtime::ParameterizationName(m.parameterization)},
             {"full_tree_depth", m.fullTreeDepth},
             {"min_weight", m.minWeight},
             {"fresnel", m.fresnel},
@@ -81,6 +82,12 @@ PemManifest ManifestFromJson(const json& j) {
     if (!(m.hardware.lodBias >= -runtime::kMaxLodBias &&
           m.hardware.lodBias <= runtime::kMaxLodBias))
         throw std::runtime_error("lod_bias must lie in [-4, 4]");
+    const std::string layout = j.value("parameterization", "cube");  // absent in older directories
+    const auto parameterization = runtime::ParseParameterization(layout);
+    if (!parameterization) throw std::runtime_error("unknown parameterization '" + layout + "'");
+    m.parameterization = *parameterization;
+    if (m.parameterization != runtime::Parameterization::Cube && m.res < 2)
+        throw std::runtime_error("res must be >= 2 for a 2D layout");
     m.fullTreeDepth = j.at("full_tree_depth").get<int>();
     m.minWeight = j.at("min_weight").get<double>();
     m.fresnel = j.at("fresnel").get<std::string>();
@@ -100,7 +107,7 @@ PemManifest ManifestFromJson(const json& j) {
 
 PemManifest PemManifestFor(const TraceManifest& trace, const std::string& pemDir, int res, bool hdr,
                            const std::vector<int>& inferred, const runtime::MapHardware& hardware,
-                           int maxRes) {
+                           int maxRes, runtime::Parameterization parameterization) {
     PemManifest m;
     m.dir = pemDir;
     const std::string scene = ResolveScene(trace.dir, trace.scene, trace.sceneGiven);
@@ -115,6 +122,7 @@ PemManifest PemManifestFor(const TraceManifest& trace, const std::string& pemDir
     m.maxRes = std::max(res, maxRes);
     m.hdr = hdr;
     m.hardware = hardware;
+    m.parameterization = parameterization;
     m.fullTreeDepth = trace.fullTreeDepth;
     m.minWeight = trace.minWeight;
     m.fresnel = trace.fresnel;
@@ -136,6 +144,25 @@ void CheckMapSize(const PemManifest& m, int size, const std::string& path) {
                                "face size " + std::to_string(size) + ", the manifest says " +
                                    std::to_string(m.res) +
                                    (m.maxRes > m.res ? " to " + std::to_string(m.maxRes) : ""));
+}
+
+void CheckMapShape(const PemManifest& m, raster::TextureKind kind, int width, int height,
+                   const std::string& path) {
+    // The layout's size parameter is a 2D map's height (runtime/parameterization.h LayoutOf).
+    const bool cube = m.parameterization == runtime::Parameterization::Cube;
+    const int size = cube ? width : height;
+    const std::string name(runtime::ParameterizationName(m.parameterization));
+    if (cube != (kind == raster::TextureKind::Cube))
+        throw base::InputError(
+            path, std::string(cube ? "a 2D map" : "a cube map") + ", the manifest says " + name);
+    CheckMapSize(m, size, path);
+    if (cube) return;
+    const runtime::MapLayout layout = runtime::LayoutOf(m.parameterization, size);
+    if (layout.width != width || layout.height != height)
+        throw base::InputError(
+            path, std::to_string(width) + " x " + std::to_string(height) + " is not a " + name +
+                      " map of size " + std::to_string(size) + " (" + std::to_string(layout.width) +
+                      " x " + std::to_string(layout.height) + ")");
 }
 
 std::string PemManifestText(const PemManifest& m) {

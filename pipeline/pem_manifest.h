@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // pem_manifest.h — manifest.json, the record of a PEM directory: what a renderer needs to draw
 // from its maps (the scene, the viewpoint samples' cameras, the lens groups' EM geometry, the
-// maps' size and profile). Its one writer and its one reader, side by side.
+// maps' layout, size and profile). Its one writer and its one reader, side by side.
 //
 //   PemManifest m = ReadPemManifest("out/pem");
 //
@@ -27,6 +27,7 @@ struct PemManifest {
     int width = 0, height = 0, spp = 1, res = 0;
     int maxRes = 0;  // the largest face size of a map (infer --max-res; res when not given)
     runtime::MapHardware hardware;
+    runtime::Parameterization parameterization = runtime::Parameterization::Cube;  // the maps'
     int fullTreeDepth = 6;  // the tracer's options of the trace (trace_manifest.h)
     double minWeight = 1e-3;
     std::string fresnel = "exact";
@@ -37,9 +38,10 @@ struct PemManifest {
 };
 
 // The manifest of maps inferred at `inferred` (empty: every sample) from `trace` into pemDir.
-PemManifest PemManifestFor(const TraceManifest& trace, const std::string& pemDir, int res, bool hdr,
-                           const std::vector<int>& inferred,
-                           const runtime::MapHardware& hardware = {}, int maxRes = 0);
+PemManifest PemManifestFor(
+    const TraceManifest& trace, const std::string& pemDir, int res, bool hdr,
+    const std::vector<int>& inferred, const runtime::MapHardware& hardware = {}, int maxRes = 0,
+    runtime::Parameterization parameterization = runtime::Parameterization::Cube);
 
 void WritePemManifest(const PemManifest& manifest);  // dir/manifest.json
 PemManifest ReadPemManifest(const std::string& dir);
@@ -47,6 +49,11 @@ PemManifest ReadPemManifest(const std::string& dir);
 // base::InputError(path, ...) unless `size` is a face size the manifest allows for a map (a
 // power of two in [res, max_res]).
 void CheckMapSize(const PemManifest& manifest, int size, const std::string& path);
+
+// base::InputError(path, ...) unless a map of `kind` and level-0 width x height is one of the
+// manifest's layout (runtime/parameterization.h) at a size CheckMapSize allows.
+void CheckMapShape(const PemManifest& manifest, raster::TextureKind kind, int width, int height,
+                   const std::string& path);
 
 // The text of manifest.json and back, for a manifest kept elsewhere (a packed PEM, pem_pack.h):
 // `dir` is where its relative paths start, `source` the file errors name.

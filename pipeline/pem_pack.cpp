@@ -14,7 +14,7 @@
 #include "base/atomic_file.h"
 #include "base/input_error.h"
 #include "base/sha256.h"
-#include "infer/cube_map.h"
+#include "infer/env_map.h"
 #include "infer/pem_file.h"
 #include "pipeline/layout.h"
 #include "pipeline/map_coding.h"
@@ -216,6 +216,10 @@ PackStats PackPem(const std::string& pemDir, const std::string& packFile, const 
         throw base::InputError("--max-error " + std::to_string(opt.map.maxError),
                                "must lie in [0, " + std::to_string(kMaxMapError) + "]");
     const PemManifest m = ReadPemManifest(pemDir);
+    if (m.parameterization != runtime::Parameterization::Cube)
+        throw base::InputError(pemDir + "/" + kManifestJson,
+                               "packs hold cube maps only; these maps are " +
+                                   std::string(runtime::ParameterizationName(m.parameterization)));
     const std::string packDir = fs::absolute(packFile).parent_path().string();
     PackBuilder b{opt.codec, json::object(), {}};
     PackStats stats;
@@ -232,8 +236,8 @@ PackStats PackPem(const std::string& pemDir, const std::string& packFile, const 
             for (const std::string& name : MapNamesIn(GroupDir(pemDir, v, g))) {
                 const std::string path = MapPath(pemDir, v, g, name);
                 CheckInside(pemDir, path);
-                const infer::CubeMapF map = infer::ReadCubeMapExr(path);
-                CheckMapSize(m, map.size, path);
+                const infer::EnvMapF map = infer::ReadEnvMapExr(path);
+                CheckMapShape(m, map.kind, map.size, map.LevelHeight(0), path);
                 const raster::Texture tex = infer::ToTexture8(map, sampler);
                 auto prev = last.find({g, name});
                 const raster::Texture* previous =
@@ -309,6 +313,8 @@ PemPack ReadPemPack(const std::string& packFile) {
         if (p.maxError < 0 || p.maxError > kMaxMapError) throw std::runtime_error("bad max_error");
         const std::string dir = fs::absolute(packFile).parent_path().string();
         p.manifest = PemManifestFromText(h.at("manifest").get<std::string>(), dir, packFile);
+        if (p.manifest.parameterization != runtime::Parameterization::Cube)
+            throw std::runtime_error("its manifest names 2D maps; packs hold cube maps only");
         const raster::SamplerState sampler = p.manifest.hardware.Sampler();
         for (const json& e : h.at("maps")) {
             const MapKey key = CheckedMapKey(e, p.manifest);

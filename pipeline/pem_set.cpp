@@ -8,7 +8,7 @@
 #include <map>
 
 #include "base/input_error.h"
-#include "infer/cube_map.h"
+#include "infer/env_map.h"
 #include "infer/pem_file.h"
 #include "pipeline/layout.h"
 #include "pipeline/pem_pack.h"
@@ -38,16 +38,20 @@ class MapCache {
     // allows (a power of two in [res, max_res]).
     raster::Texture Load(const std::string& path) const {
         CheckInside(manifest_.dir, path);
-        infer::CubeMapF map;
+        infer::EnvMapF map;
         try {
-            map = infer::ReadCubeMapExr(path);
+            map = infer::ReadEnvMapExr(path);
         } catch (const base::InputError&) {
             throw;
         } catch (const std::exception& e) {
             throw base::InputError(path, std::string("cannot read the map: ") + e.what());
         }
-        CheckMapSize(manifest_, map.size, path);
-        return infer::ToTexture8(map, sampler_);
+        CheckMapShape(manifest_, map.kind, map.size, map.LevelHeight(0), path);
+        if (map.IsCube()) return infer::ToTexture8(map, sampler_);
+        // A 2D layout: the hardware's filters with the layout's wrap modes.
+        return infer::ToTexture8(
+            map, runtime::LayoutSampler(runtime::LayoutOf(manifest_.parameterization, map.height),
+                                        sampler_));
     }
 
     PemManifest manifest_;
@@ -66,6 +70,7 @@ runtime::MapSet LoadMapSet(const PemManifest& m) {
     set.spp = m.spp;
     set.res = m.res;
     set.hardware = m.hardware;
+    set.parameterization = m.parameterization;
     TraceManifest tracing;  // the tracer's options, as the trace read them
     tracing.fullTreeDepth = m.fullTreeDepth, tracing.minWeight = m.minWeight;
     tracing.fresnel = m.fresnel;

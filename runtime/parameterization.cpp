@@ -107,16 +107,25 @@ MapLayout LayoutOf(Parameterization p, int size) {
     return l;
 }
 
+raster::SamplerState LayoutSampler(const MapLayout& layout, const raster::SamplerState& sampler) {
+    raster::SamplerState s = sampler;
+    s.wrapS = layout.wrapS, s.wrapT = layout.wrapT;
+    return s;
+}
+
 raster::Texture EmptyTexture(const MapLayout& layout, const raster::SamplerState& sampler) {
     raster::Texture t;
     t.kind = layout.kind;
     t.width = layout.width, t.height = layout.height;
-    t.sampler = sampler;
-    t.sampler.wrapS = layout.wrapS, t.sampler.wrapT = layout.wrapT;
+    t.sampler = LayoutSampler(layout, sampler);
     for (int l = 0; l == 0 || t.LevelWidth(l - 1) > 1 || t.LevelHeight(l - 1) > 1; ++l)
         t.levels.emplace_back(
             static_cast<size_t>(t.Faces()) * t.LevelWidth(l) * t.LevelHeight(l) * 4, 0);
     return t;
+}
+
+glm::mat3 EyeFromWorld(const raster::Camera& camera) {
+    return glm::mat3(raster::ViewMatrix(camera));
 }
 
 int ChartOf(Parameterization p, const glm::vec3& dir) {

@@ -36,6 +36,7 @@
 #include <optional>
 #include <string_view>
 
+#include "raster/camera.h"
 #include "raster/frame.h"
 
 namespace pem::runtime {
@@ -63,9 +64,16 @@ struct MapLayout {
 // size: a power of two >= 2 (the tennis bands are size / 2 tall).
 MapLayout LayoutOf(Parameterization p, int size);
 
+// `sampler`'s filters with the layout's wrap modes.
+raster::SamplerState LayoutSampler(const MapLayout& layout, const raster::SamplerState& sampler);
+
 // An empty texture of the layout (every level zero) with `sampler`'s filters and the layout's
 // wrap modes.
 raster::Texture EmptyTexture(const MapLayout& layout, const raster::SamplerState& sampler);
+
+// The rotation from world to `camera`'s eye space: the sphere map's eyeFromWorld for a pass
+// drawn from that camera.
+glm::mat3 EyeFromWorld(const raster::Camera& camera);
 
 // Step: the chart of a direction (0 for cube, latlong and sphere).
 int ChartOf(Parameterization p, const glm::vec3& dir);

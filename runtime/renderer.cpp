@@ -154,7 +154,7 @@ class FrameBatch {
             po.blend = slot == 0 ? raster::BlendState::None() : PremultipliedOver();
             po.depthTest = LayerDepthTest(slot == 0);
             po.parameterization = parameterization_;
-            po.eyeFromWorld = glm::mat3(raster::ViewMatrix(camera_));
+            po.eyeFromWorld = EyeFromWorld(camera_);
             frame.textures.push_back(Shape(*maps[k]));
             frameReady.push_back(Prepared(maps[k]));
             if (sameAs < 0)
@@ -552,7 +552,7 @@ std::vector<std::vector<raster::ImageF>> Renderer::LayerImages(const raster::Cam
             PassOptions po;
             po.depthTest = LayerDepthTest(true);
             po.parameterization = m.maps.parameterization;
-            po.eyeFromWorld = glm::mat3(raster::ViewMatrix(camera));
+            po.eyeFromWorld = EyeFromWorld(camera);
             FillLayerPass(geo, ShellCoords(gg.exits[term], *uses[k].shell, g.emOrigin, s.threads),
                           gg.exits[term], po, &frame.passes[0], s.threads);
             const raster::RenderResult rr = raster::Render(raster::PreparedFrame(frame), ro);

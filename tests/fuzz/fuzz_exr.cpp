@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // fuzz_exr.cpp — OpenEXR files: trace images and environment maps (trace::ReadExr) and
-// inferred cube maps (infer::ReadCubeMapExr, which the PEM set wraps into base::InputError).
+// inferred cube maps (infer::ReadEnvMapExr, which the PEM set wraps into base::InputError).
 #include <cstddef>
 #include <cstdint>
 #include <stdexcept>
@@ -17,7 +17,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     } catch (const pem::base::InputError&) {
     }
     try {
-        pem::infer::ReadCubeMapExr(path);
+        pem::infer::ReadEnvMapExr(path);
     } catch (const std::exception&) {  // OpenEXR's Iex exceptions derive from it
     }
     return 0;

@@ -9,7 +9,7 @@
 #include <filesystem>
 #include <string>
 
-#include "infer/cube_map.h"
+#include "infer/env_map.h"
 #include "infer/problem.h"
 #include "infer/solver.h"
 #include "raster/render.h"

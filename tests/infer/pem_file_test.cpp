@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
-// pem_file_test.cpp — OpenEXR cube maps: exact round trip of every level, the full level chain
-// (degenerate tail included), the face layout as a bijection, the 8-bit copy.
+// pem_file_test.cpp — OpenEXR cube and 2D maps: exact round trip of every level, the full level
+// chain (degenerate tail included), the face layout as a bijection, the 8-bit copy.
 #include "infer/pem_file.h"
 
 #include <gtest/gtest.h>
@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <set>
 #include <stdexcept>
+#include <tuple>
 
 namespace pem::infer {
 namespace {
@@ -20,8 +21,8 @@ std::string OutputPath(const std::string& name) {
 }
 
 // Values spanning 1e-6 .. 1e6 with random signs and mantissas (bit patterns must survive).
-CubeMapF RandomMap(int size, int levels, uint64_t seed) {
-    CubeMapF map;
+EnvMapF RandomMap(int size, int levels, uint64_t seed) {
+    EnvMapF map;
     map.size = size;
     uint64_t s = seed;
     for (int l = 0; l < levels; ++l) {
@@ -43,7 +44,7 @@ TEST(PemFile, FuzzRegressionsAreRefused) {
     int files = 0;
     for (const auto& e : std::filesystem::directory_iterator(std::string(PEM_SOURCE_DIR) +
                                                              "/tests/data/fuzz_regressions/exr")) {
-        EXPECT_THROW(ReadCubeMapExr(e.path().string()), std::exception) << e.path();
+        EXPECT_THROW(ReadEnvMapExr(e.path().string()), std::exception) << e.path();
         ++files;
     }
     EXPECT_GE(files, 2);
@@ -75,19 +76,65 @@ TEST(PemFile, FaceLayoutIsABijection) {
 TEST(PemFile, RoundTripExact) {
     for (auto [size, levels] :
          {std::pair{16, 5}, std::pair{32, 6}, std::pair{8, 1}, std::pair{1, 1}}) {
-        const CubeMapF map = RandomMap(size, levels, 42 + static_cast<uint64_t>(size));
+        const EnvMapF map = RandomMap(size, levels, 42 + static_cast<uint64_t>(size));
         const std::string path = OutputPath("roundtrip_" + std::to_string(size) + ".exr");
-        WriteCubeMapExr(map, path);
+        WriteEnvMapExr(map, path);
         EXPECT_FALSE(std::filesystem::exists(path + ".tmp"));
-        const CubeMapF back = ReadCubeMapExr(path);
+        const EnvMapF back = ReadEnvMapExr(path);
         EXPECT_TRUE(back == map) << size;
     }
 }
 
+// A 2D map (the lat-long, sphere, paraboloid and tennis layouts) of w x h with `levels` levels.
+EnvMapF Random2DMap(int w, int h, int levels, uint64_t seed) {
+    EnvMapF map = RandomMap(1, 0, seed);
+    map.kind = raster::TextureKind::Tex2D;
+    map.size = w;
+    map.height = h;
+    uint64_t s = seed;
+    for (int l = 0; l < levels; ++l) {
+        std::vector<float> v(map.LevelTexels(l) * 4);
+        for (float& x : v) {
+            s = s * 6364136223846793005ull + 1442695040888963407ull;
+            x = static_cast<float>(static_cast<double>(s >> 11) / 9007199254740992.0 - 0.25);
+        }
+        map.levels.push_back(std::move(v));
+    }
+    return map;
+}
+
+// A 2D map comes back as written, every level bit for bit; it is a plain W x H image (no envmap
+// attribute), level 0 row j being the texture's row j.
+TEST(PemFile, TwoDimensionalRoundTripExact) {
+    for (auto [w, h, levels] :
+         {std::tuple{16, 8, 5}, std::tuple{8, 8, 4}, std::tuple{32, 16, 2}, std::tuple{4, 2, 3}}) {
+        const EnvMapF map = Random2DMap(w, h, levels, 7 + static_cast<uint64_t>(w + h));
+        const std::string path =
+            OutputPath("roundtrip2d_" + std::to_string(w) + "x" + std::to_string(h) + ".exr");
+        WriteEnvMapExr(map, path);
+        const EnvMapF back = ReadEnvMapExr(path);
+        EXPECT_EQ(back.kind, raster::TextureKind::Tex2D);
+        EXPECT_EQ(back.height, h);
+        EXPECT_TRUE(back == map) << w << "x" << h;
+        const ExrLevelImage level0 = ReadExrLevel(path, 0);
+        ASSERT_EQ(level0.width, w);
+        ASSERT_EQ(level0.height, h);
+        EXPECT_EQ(level0.rgba, map.levels[0]);
+    }
+    // Wrong level sizes and non-power-of-two shapes are refused before a file is written.
+    EnvMapF bad = Random2DMap(16, 8, 2, 3);
+    bad.levels[1].pop_back();
+    EXPECT_THROW(WriteEnvMapExr(bad, OutputPath("bad2d.exr")), std::invalid_argument);
+    EnvMapF odd = Random2DMap(16, 8, 1, 3);
+    odd.height = 6;
+    EXPECT_THROW(WriteEnvMapExr(odd, OutputPath("odd2d.exr")), std::invalid_argument);
+    EXPECT_FALSE(std::filesystem::exists(OutputPath("odd2d.exr")));
+}
+
 TEST(PemFile, TailLevelsHoldTheCoarsestMean) {
-    CubeMapF map = RandomMap(4, 3, 9);
+    EnvMapF map = RandomMap(4, 3, 9);
     const std::string path = OutputPath("tail.exr");
-    WriteCubeMapExr(map, path);
+    WriteEnvMapExr(map, path);
     const ExrLevelImage tail = ReadExrLevel(path, ExrLevelCount(4) - 1);
     ASSERT_EQ(tail.width, 1);
     ASSERT_EQ(tail.height, 1);
@@ -99,7 +146,7 @@ TEST(PemFile, TailLevelsHoldTheCoarsestMean) {
 }
 
 TEST(PemFile, EightBitCopy) {
-    CubeMapF map;
+    EnvMapF map;
     map.size = 1;
     map.levels.push_back({-0.5f,
                           0.0f,
@@ -150,7 +197,7 @@ TEST(PemFile, EightBitCopyRoundsAsNearbyint) {
         values.push_back(f);
     }
     while (values.size() % 24) values.push_back(0.0f);  // whole 1x1 cube maps (6 faces x RGBA)
-    CubeMapF map;
+    EnvMapF map;
     map.size = 1;
     for (size_t k = 0; k < values.size(); k += 24)
         map.levels.emplace_back(values.begin() + static_cast<std::ptrdiff_t>(k),

@@ -50,7 +50,7 @@ TEST(Recovery, LinearProfileMirrorSphere) {
     const testing::ImageError e = MaskedError(sys, ApplyRendering(s.a, xs, 1), s.b);
     // ... and through raster/ with the 8-bit copy (linear profile: float framebuffer).
     raster::Frame g = s.frame;
-    g.textures[0] = ToTexture8(CubeMapFromSolution(res.x, sys.layout), s.frame.textures[0].sampler);
+    g.textures[0] = ToTexture8(EnvMapFromSolution(res.x, sys.layout), s.frame.textures[0].sampler);
     raster::RenderOptions lin;
     lin.profile = raster::Profile::Linear;
     const raster::ImageF img = raster::Render(raster::PreparedFrame(g), lin).imageF;

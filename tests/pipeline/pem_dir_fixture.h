@@ -12,8 +12,8 @@
 namespace pem::pipeline {
 
 // A cube map of face size n, every level and texel (r, g, b, a).
-inline infer::CubeMapF ConstantMap(int n, float r, float g, float b, float a) {
-    infer::CubeMapF m;
+inline infer::EnvMapF ConstantMap(int n, float r, float g, float b, float a) {
+    infer::EnvMapF m;
     m.size = n;
     for (int s = n; s >= 1; s /= 2) {
         std::vector<float>& level = m.levels.emplace_back();
@@ -48,8 +48,8 @@ inline PemManifest MakePemDir(const fs::path& dir) {
     PemManifest m = PemManifestFor(t, (dir / "pem").string(), 8, false, {});
     fs::create_directories(GroupDir(m.dir, 0, 0));
     WritePemManifest(m);
-    infer::WriteCubeMapExr(ConstantMap(8, 0.5f, 0.25f, 1.0f, 1.0f),
-                           MapPath(m.dir, 0, 0, "pem_distant"));
+    infer::WriteEnvMapExr(ConstantMap(8, 0.5f, 0.25f, 1.0f, 1.0f),
+                          MapPath(m.dir, 0, 0, "pem_distant"));
     return m;
 }
 

@@ -15,7 +15,7 @@
 #include "base/byte_codec.h"
 #include "base/input_error.h"
 #include "base/j2k_codec.h"
-#include "infer/cube_map.h"
+#include "infer/env_map.h"
 #include "pipeline/map_coding.h"
 #include "pipeline/pem_set.h"
 #include "tests/pipeline/pem_dir_fixture.h"
@@ -143,9 +143,9 @@ TEST(ByteCodec, BothCodecsGiveBackTheBytes) {
 PemManifest MakeNoisyPemDir(const fs::path& dir) {
     PemManifest m = MakePemDir(dir);
     raster::Texture t = Picture(8, 4, 7);
-    infer::WriteCubeMapExr(infer::FromTexture8(t), MapPath(m.dir, 0, 0, "pem_distant"));
-    infer::WriteCubeMapExr(infer::FromTexture8(Picture(8, 4, 8, 1)),
-                           MapPath(m.dir, 0, 0, "pem_local"));
+    infer::WriteEnvMapExr(infer::FromTexture8(t), MapPath(m.dir, 0, 0, "pem_distant"));
+    infer::WriteEnvMapExr(infer::FromTexture8(Picture(8, 4, 8, 1)),
+                          MapPath(m.dir, 0, 0, "pem_local"));
     base::WriteTextAtomic(m.dir + "/infer.json", "{\"note\": \"kept verbatim\"}\n");
     return m;
 }

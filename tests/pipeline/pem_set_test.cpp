@@ -47,12 +47,11 @@ TEST(PemSet, MapSizesWithinResAndMaxRes) {
     m.maxRes = 32;
     WritePemManifest(m);
     EXPECT_EQ(ReadPemManifest(m.dir).maxRes, 32);
-    infer::WriteCubeMapExr(ConstantMap(32, 0.5f, 0.25f, 1.0f, 1.0f),
-                           MapPath(m.dir, 0, 0, "pem_distant"));
-    infer::WriteCubeMapExr(ConstantMap(64, 0.5f, 0.25f, 1.0f, 1.0f),
-                           MapPath(m.dir, 0, 0, "pem_local"));
-    infer::WriteCubeMapExr(ConstantMap(4, 0.5f, 0.25f, 1.0f, 1.0f),
-                           MapPath(m.dir, 0, 0, "layer_0"));
+    infer::WriteEnvMapExr(ConstantMap(32, 0.5f, 0.25f, 1.0f, 1.0f),
+                          MapPath(m.dir, 0, 0, "pem_distant"));
+    infer::WriteEnvMapExr(ConstantMap(64, 0.5f, 0.25f, 1.0f, 1.0f),
+                          MapPath(m.dir, 0, 0, "pem_local"));
+    infer::WriteEnvMapExr(ConstantMap(4, 0.5f, 0.25f, 1.0f, 1.0f), MapPath(m.dir, 0, 0, "layer_0"));
     const runtime::MapSet set = LoadMapSet(ReadPemManifest(m.dir));
     const raster::Texture* t = set.map(0, 0, "pem_distant");
     ASSERT_NE(t, nullptr);
@@ -64,6 +63,46 @@ TEST(PemSet, MapSizesWithinResAndMaxRes) {
     m.maxRes = 4;
     WritePemManifest(m);
     EXPECT_THROW(ReadPemManifest(m.dir), base::InputError);
+    fs::remove_all(dir);
+}
+
+// A lat-long PEM (manifest "parameterization": "latlong"): its 2D maps load with the layout's
+// wrap (REPEAT along s) and the hardware's filters; a cube map, or a 2D map of another layout's
+// shape, in that directory is refused with the map's path; so is packing it.
+TEST(PemSet, TwoDimensionalLayouts) {
+    const fs::path dir = FreshDir("pem_latlong");
+    PemManifest m = MakePemDir(dir);
+    m.parameterization = runtime::Parameterization::LatLong;
+    WritePemManifest(m);
+    ASSERT_EQ(ReadPemManifest(m.dir).parameterization, runtime::Parameterization::LatLong);
+    infer::EnvMapF latlong;
+    latlong.kind = raster::TextureKind::Tex2D;
+    latlong.size = 16, latlong.height = 8;  // LayoutOf(LatLong, 8): 16 x 8
+    for (int l = 0; l < 5; ++l) latlong.levels.emplace_back(latlong.LevelTexels(l) * 4, 0.25f);
+    infer::WriteEnvMapExr(latlong, MapPath(m.dir, 0, 0, "pem_distant"));
+    infer::EnvMapF square = latlong;  // a sphere map's shape: 8 x 8
+    square.size = 8;
+    square.levels.pop_back();
+    for (int l = 0; l < 4; ++l)
+        square.levels[static_cast<size_t>(l)].resize(square.LevelTexels(l) * 4);
+    infer::WriteEnvMapExr(square, MapPath(m.dir, 0, 0, "layer_0"));
+    infer::WriteEnvMapExr(ConstantMap(8, 0.5f, 0.25f, 1.0f, 1.0f),
+                          MapPath(m.dir, 0, 0, "pem_local"));
+    const runtime::MapSet set = LoadMapSet(ReadPemManifest(m.dir));
+    EXPECT_EQ(set.parameterization, runtime::Parameterization::LatLong);
+    const raster::Texture* t = set.map(0, 0, "pem_distant");
+    ASSERT_NE(t, nullptr);
+    EXPECT_EQ(t->kind, raster::TextureKind::Tex2D);
+    EXPECT_EQ(t->width, 16);
+    EXPECT_EQ(t->height, 8);
+    EXPECT_EQ(t->NumLevels(), 5);
+    EXPECT_EQ(t->sampler.wrapS, raster::Wrap::Repeat);
+    EXPECT_EQ(t->sampler.wrapT, raster::Wrap::ClampToEdge);
+    EXPECT_EQ(t->levels[4][0], 64);                              // 0.25 * 255 = 63.75 -> 64
+    EXPECT_THROW(set.map(0, 0, "layer_0"), base::InputError);    // 8 x 8 is not lat-long's
+    EXPECT_THROW(set.map(0, 0, "pem_local"), base::InputError);  // a cube map
+    EXPECT_THROW(PackPem(m.dir, (dir / "p.pempack").string(), {}), base::InputError);
+    EXPECT_FALSE(fs::exists(dir / "p.pempack"));
     fs::remove_all(dir);
 }
 

@@ -55,10 +55,26 @@ void AddProfileOption(CLI::App* sub, std::string* profile) {
 }
 
 void AddMapSizeOptions(CLI::App* sub, int* res, int* maxRes) {
-    sub->add_option("--res", *res, "cube face size N (power of two)");
+    sub->add_option("--res", *res,
+                    "map size N (power of two): a cube's face size, a 2D layout's height");
     sub->add_option("--max-res", *maxRes,
                     "each map's face size from a test rendering at its sample, up to N (power of "
                     "two, >= --res; PEM §4 EM resolution)");
+}
+
+void AddParameterizationOption(CLI::App* sub, runtime::Parameterization* parameterization) {
+    std::string names;
+    for (runtime::Parameterization p : runtime::kParameterizations)
+        names += (names.empty() ? "" : "|") + std::string(runtime::ParameterizationName(p));
+    sub->add_option_function<std::string>(
+           "--parameterization",
+           [parameterization](const std::string& v) {
+               *parameterization = *runtime::ParseParameterization(v);
+           },
+           "the maps' layout: " + names + " (default cube)")
+        ->check([names](const std::string& v) -> std::string {
+            return runtime::ParseParameterization(v) ? "" : "expected one of " + names;
+        });
 }
 
 void AddMapHardwareOptions(CLI::App* sub, runtime::MapHardware* hardware) {

@@ -35,6 +35,9 @@ void AddMapHardwareOptions(CLI::App* sub, runtime::MapHardware* hardware);
 // may choose (infer, bake and demo).
 void AddMapSizeOptions(CLI::App* sub, int* res, int* maxRes);
 
+// --parameterization NAME: the maps' layout (runtime/parameterization.h).
+void AddParameterizationOption(CLI::App* sub, runtime::Parameterization* parameterization);
+
 // pemref's version ("0.1.0", the project's CMake version).
 std::string PemrefVersion();
 // It and every profile's model (`pemref --version`).

@@ -34,6 +34,7 @@ void AddBakeCommand(CLI::App& app) {
     sub->add_option("--out", o.outDir, "output directory (DIR/trace, DIR/pem)")->required();
     sub->add_option("--views", o.trace.views, "camera | circle:N:STEP_DEG");
     AddMapSizeOptions(sub, &o.infer.res, &o.infer.maxRes);
+    AddParameterizationOption(sub, &o.infer.parameterization);
     sub->add_option("--size", a.size, "image size WxH");
     sub->add_option("--spp", o.trace.spp, "K: K×K supersamples per pixel")
         ->check(CLI::Range(1, 16));

@@ -56,6 +56,7 @@ void AddInferCommand(CLI::App& app) {
     sub->add_option("trace_dir", o.traceDir, "output directory of pemref trace")->required();
     sub->add_option("--out", o.outDir, "PEM directory")->required();
     AddMapSizeOptions(sub, &o.res, &o.maxRes);
+    AddParameterizationOption(sub, &o.parameterization);
     sub->add_option("--threads", o.threads, "worker threads")->check(CLI::Range(1, 256));
     AddMapHardwareOptions(sub, &o.hardware);
     sub->add_option("--views", a.views, "viewpoint samples to infer, e.g. 0,2 (default: all)");

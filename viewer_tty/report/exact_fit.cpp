@@ -7,7 +7,7 @@
 #include <map>
 
 #include "base/parallel.h"
-#include "infer/cube_map.h"
+#include "infer/env_map.h"
 #include "infer/problem.h"
 #include "infer/solver.h"
 #include "raster/cube_lookup.h"

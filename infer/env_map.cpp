@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
-// cube_map.cpp — conversions of the inferred cube map (cube_map.h).
-#include "infer/cube_map.h"
+// env_map.cpp — conversions of the inferred environment map (env_map.h).
+#include "infer/env_map.h"
 
 #include <algorithm>
 #include <cmath>
@@ -20,32 +20,34 @@ uint8_t ToByte(float value) {
 
 }  // namespace
 
-CubeMapF CubeMapFromSolution(const Vector& x, const TexelLayout& layout) {
+EnvMapF EnvMapFromSolution(const Vector& x, const TexelLayout& layout) {
     if (layout.firstTexel != 0 || static_cast<int64_t>(x.size()) != kChannels * layout.TexelCount())
-        throw std::invalid_argument("CubeMapFromSolution: size differs from the layout");
-    CubeMapF map;
+        throw std::invalid_argument("EnvMapFromSolution: size differs from the layout");
+    EnvMapF map;
+    map.kind = layout.kind;
     map.size = layout.size;
+    map.height = layout.LevelHeight(0);
     size_t k = 0;
     for (int l = 0; l < layout.levels; ++l) {
-        const int n = layout.LevelSize(l);
-        std::vector<float> level(static_cast<size_t>(6 * n * n * kChannels));
+        std::vector<float> level(map.LevelTexels(l) * kChannels);
         for (float& v : level) v = static_cast<float>(x[k++]);
         map.levels.push_back(std::move(level));
     }
     return map;
 }
 
-Vector SolutionFromCubeMap(const CubeMapF& map) {
+Vector SolutionFromEnvMap(const EnvMapF& map) {
     Vector x;
     for (const auto& level : map.levels)
         for (float v : level) x.push_back(static_cast<double>(v));
     return x;
 }
 
-raster::Texture ToTexture8(const CubeMapF& map, const raster::SamplerState& sampler) {
+raster::Texture ToTexture8(const EnvMapF& map, const raster::SamplerState& sampler) {
     raster::Texture t;
-    t.kind = raster::TextureKind::Cube;
-    t.width = t.height = map.size;
+    t.kind = map.kind;
+    t.width = map.size;
+    t.height = map.LevelHeight(0);
     t.sampler = sampler;
     for (const auto& level : map.levels) {
         std::vector<uint8_t> bytes(level.size());
@@ -74,11 +76,13 @@ raster::Texture Texture8FromSolution(const Vector& x, const TexelLayout& layout,
     return t;
 }
 
-CubeMapF FromTexture8(const raster::Texture& texture) {
-    if (texture.kind != raster::TextureKind::Cube)
-        throw std::invalid_argument("FromTexture8: not a cube");
-    CubeMapF map;
+EnvMapF FromTexture8(const raster::Texture& texture) {
+    if (texture.kind != raster::TextureKind::Cube && texture.kind != raster::TextureKind::Tex2D)
+        throw std::invalid_argument("FromTexture8: neither a cube nor a 2D texture");
+    EnvMapF map;
+    map.kind = texture.kind;
     map.size = texture.width;
+    map.height = texture.height;
     for (const auto& level : texture.levels) {
         std::vector<float> values(level.size());
         for (size_t k = 0; k < level.size(); ++k) values[k] = static_cast<float>(level[k] / 255.0);
