@@ -18,6 +18,7 @@
 #include "viewer_tty/cli/cmd_render.h"
 #include "viewer_tty/cli/cmd_report.h"
 #include "viewer_tty/cli/cmd_stability.h"
+#include "viewer_tty/cli/cmd_study.h"
 #include "viewer_tty/cli/cmd_trace.h"
 #include "viewer_tty/cli/cmd_view.h"
 
@@ -37,6 +38,7 @@ int main(int argc, char** argv) {
     pem::cli::AddBakeCommand(app);
     pem::cli::AddPackCommands(app);
     pem::cli::AddReportCommand(app);
+    pem::cli::AddStudyCommand(app);
     pem::cli::AddDemoCommand(app);
     pem::cli::AddStabilityCommand(app);
     pem::cli::AddGoldenCommand(app);
@@ -60,6 +62,7 @@ int main(int argc, char** argv) {
         if (app.got_subcommand("pack")) return pem::cli::RunPackCommand();
         if (app.got_subcommand("unpack")) return pem::cli::RunUnpackCommand();
         if (app.got_subcommand("report")) return pem::cli::RunReportCommand();
+        if (app.got_subcommand("study")) return pem::cli::RunStudyCommand();
         if (app.got_subcommand("demo")) return pem::cli::RunDemoCommand();
         if (app.got_subcommand("stability")) return pem::cli::RunStabilityCommand();
         if (app.got_subcommand("golden")) return pem::cli::RunGoldenCommand(app);

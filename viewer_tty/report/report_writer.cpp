@@ -18,50 +18,13 @@
 
 #include "base/atomic_file.h"
 #include "base/xml_text.h"
+#include "viewer_tty/report/document_parts.h"
 
 namespace pem::report {
 
 namespace {
 
 // ---- Text helpers ------------------------------------------------------------------------------
-
-std::string Format(const char* format, double v) {
-    char buf[64];
-    std::snprintf(buf, sizeof buf, format, v);
-    return buf;
-}
-
-// A number for a table cell; non-finite values are "n/a".
-std::string Num(double v, const char* format = "%.4g") {
-    return std::isfinite(v) ? Format(format, v) : "n/a";
-}
-
-// A table cell: '|' escaped, line breaks flattened.
-std::string Cell(const std::string& text) {
-    std::string out;
-    for (char c : text) {
-        if (c == '|')
-            out += "\\|";
-        else if (c == '\n' || c == '\r')
-            out += ' ';
-        else
-            out += c;
-    }
-    return out;
-}
-
-std::string Row(const std::vector<std::string>& cells) {
-    std::string row = "|";
-    for (const std::string& c : cells) row += " " + c + " |";
-    return row + "\n";
-}
-
-// The header and rule of a table; align has one letter per column, 'l' (text) or 'r' (numbers).
-std::string HeaderRow(const std::vector<std::string>& names, const std::string& align) {
-    std::string rule = "|";
-    for (size_t i = 0; i < names.size(); ++i) rule += align.at(i) == 'r' ? "---:|" : "---|";
-    return Row(names) + rule + "\n";
-}
 
 // Natural order: digit runs compare as numbers ("t=3" < "t=10"), the rest byte-wise.
 bool NaturalLess(const std::string& a, const std::string& b) {
@@ -161,8 +124,6 @@ std::string MarkdownStability(const std::vector<StabilityRow>& rows) {
 constexpr double kPanelW = 300, kPanelH = 240;                    // plot area of one panel
 constexpr double kLeft = 80, kTop = 60, kGap = 70, kBottom = 60;  // margins around panels
 constexpr double kLegendW = 190;
-const char* const kColours[] = {"#0072B2", "#D55E00", "#009E73", "#CC79A7",
-                                "#E69F00", "#56B4E9", "#000000", "#999999"};
 
 bool Plottable(const MethodResult& r) {
     return std::isfinite(r.seconds) && r.seconds > 0 && std::isfinite(r.floatScores.rmse) &&
@@ -182,20 +143,6 @@ Decades DecadesOf(const std::vector<double>& values, Decades fallback) {
     Decades d{int(std::floor(std::log10(*mn))), int(std::ceil(std::log10(*mx)))};
     if (d.hi <= d.lo) d.hi = d.lo + 1;
     return d;
-}
-
-std::string P(double v) {
-    return Format("%.2f", v);
-}
-
-std::string SvgText(double x, double y, const std::string& text, const std::string& attrs) {
-    return "<text x=\"" + P(x) + "\" y=\"" + P(y) + "\" " + attrs + ">" + base::XmlEscaped(text) +
-           "</text>\n";
-}
-
-std::string SvgLine(double x1, double y1, double x2, double y2, const std::string& attrs) {
-    return "<line x1=\"" + P(x1) + "\" y1=\"" + P(y1) + "\" x2=\"" + P(x2) + "\" y2=\"" + P(y2) +
-           "\" " + attrs + "/>\n";
 }
 
 // Frame, decade grid, ticks (minor at 2..9), labels and axis titles of one panel at (x0, y0).

@@ -1,0 +1,90 @@
+#!/usr/bin/env bash
+# layouts_cli.sh PEMREF DATA_DIR MASKED_PSNR — the notes' five EM layouts through the command line:
+#  1. scene (a) traced once; `infer --parameterization` for each layout: the manifest names it,
+#     a 2D layout's maps are plain W x H OpenEXR images of the layout's shape (exrheader: no
+#     envmap attribute), and the hybrid and PEM frames drawn from them at the sample come closer
+#     to the traced two-term frame than the static EM (by 3 dB) on every lens group (the outside check:
+#     masked_psnr against the trace's greedy.exr on b_R's pixels), the cube's figures beside;
+#  2. a 2D PEM is not packed (packs hold cube maps): one error line, no file;
+#  3. `pemref study` on the mirror sphere at a small size: study.md, study.svg, study.json with
+#     every layout and size, finite scores, map pictures that exist.
+set -euo pipefail
+pemref=$1 data=$2 masked_psnr=$3
+work=$(mktemp -d "${TMPDIR:-/tmp}/pem_layouts.XXXXXX")
+trap 'rm -rf "$work"' EXIT
+py=python3
+[ -x /usr/bin/python3 ] && py=/usr/bin/python3
+
+# Step 1: one trace, five layouts.
+"$pemref" trace "$data/scenes/hybrid_glass_teapot.gltf" --out "$work/trace" --views circle:2:10 \
+    --size 160x120 --spp 2 --threads 2 --quiet
+for p in cube latlong sphere paraboloid tennis; do
+  "$pemref" infer "$work/trace" --out "$work/$p" --res 32 --parameterization "$p" --threads 2 \
+      --quiet
+  grep -q "\"parameterization\": \"$p\"" "$work/$p/manifest.json" ||
+    { echo "FAIL: $p: the manifest does not name the layout"; exit 1; }
+  for m in hybrid pem; do
+    "$pemref" render "$work/$p" --view sample:0 --method "$m" --threads 2 --quiet \
+        -o "$work/${p}_$m.exr"
+  done
+done
+"$pemref" render "$work/cube" --view sample:0 --method static --threads 2 --quiet \
+    -o "$work/static.exr"
+# A 2D map's shape: lat-long, paraboloid and tennis 2n x n, the sphere map n x n (n = 32).
+for pw in latlong:64 sphere:32 paraboloid:64 tennis:64; do
+  p=${pw%%:*} w=${pw##*:}
+  hdr=$(exrheader "$work/$p/view_000/group_0/layer_0.exr")
+  grep -q "dataWindow (type box2i): (0 0) - ($((w - 1)) 31)" <<<"$hdr" ||
+    { echo "FAIL: $p: layer_0.exr is not ${w} x 32"; echo "$hdr"; exit 1; }
+  if grep -q "envmap" <<<"$hdr"; then echo "FAIL: $p: a 2D map with an envmap attribute"; exit 1; fi
+done
+for g in 0 1; do
+  mask="$work/trace/view_000/group_$g/b_R.exr"
+  read -r static_db _ < <("$masked_psnr" "$work/static.exr" "$work/trace/view_000/greedy.exr" "$mask")
+  line="group $g: static EM $static_db dB"
+  for p in cube latlong sphere paraboloid tennis; do
+    for m in hybrid pem; do
+      read -r db _ < <("$masked_psnr" "$work/${p}_$m.exr" "$work/trace/view_000/greedy.exr" "$mask")
+      line+=", $p $m $db"
+      awk -v a="$db" -v s="$static_db" 'BEGIN { exit !(a >= s + 3) }' ||
+        { echo "FAIL: $line: not 3 dB closer to the traced frame than the static EM"; exit 1; }
+    done
+  done
+  echo "$line"
+done
+
+# Step 2: no pack of 2D maps.
+if err=$("$pemref" pack "$work/latlong" -o "$work/l.pempack" --quiet 2>&1); then
+  echo "FAIL: a lat-long PEM was packed"; exit 1
+fi
+[ "$(wc -l <<<"$err")" -eq 1 ] && grep -q "manifest.json.*cube maps only" <<<"$err" ||
+  { echo "FAIL: pack of a 2D PEM: expected one line naming manifest.json, got: $err"; exit 1; }
+[ ! -e "$work/l.pempack" ] || { echo "FAIL: a partial pack was left"; exit 1; }
+
+# Step 3: the study.
+"$pemref" study "$data/scenes/mirror_sphere.gltf" --out "$work/study" --sizes 4,16 \
+    --size 80x60 --reference-spp 2 --threads 2 --quiet
+"$py" - "$work/study" <<'PY'
+import json, math, os, sys
+d = sys.argv[1]
+s = json.load(open(f"{d}/study.json"))
+layouts = {"cube", "latlong", "sphere", "paraboloid", "tennis"}
+points = s["points"]
+assert {p["layout"] for p in points} == layouts, points
+assert len(points) == 10, len(points)
+texels = {"cube": 6, "latlong": 2, "sphere": 1, "paraboloid": 2, "tennis": 2}
+for p in points:
+    assert p["texels"] == texels[p["layout"]] * p["size"] ** 2, p
+    assert len(p["scores"]) == 6, p  # 3 positions x (hybrid, layered PEM)
+    for q in p["scores"]:
+        assert q["psnr"] is not None and math.isfinite(q["psnr"]), p
+    assert os.path.exists(f"{d}/{p['picture']}"), p["picture"]
+    assert os.path.exists(f"{d}/{p['pem_dir']}/manifest.json"), p["pem_dir"]
+md = open(f"{d}/study.md").read()
+for name in layouts:
+    assert f"| {name} | 16 |" in md, name
+svg = open(f"{d}/study.svg").read()
+assert svg.count("<polyline") == 5 * 3, svg.count("<polyline")
+print("study: 10 points, every layout and position scored")
+PY
+echo "PASS: layouts_cli"
