@@ -52,6 +52,35 @@ void WriteAtomically(const std::string& path,
     }
 }
 
+void WriteDirectoryAtomically(const std::string& path, const std::string& marker,
+                              const std::function<void(const std::string& tmp)>& write) {
+    namespace fs = std::filesystem;
+    // Step 1: path may be replaced only if it is absent, empty or a previous output.
+    std::error_code ec;
+    if (fs::exists(path, ec) && !(fs::is_directory(path, ec) &&
+                                  (fs::is_empty(path, ec) || fs::exists(path + "/" + marker, ec))))
+        throw InputError(path, "exists and is not an earlier output (no " + marker +
+                                   "): choose another directory");
+    // Step 2: the work, in a fresh temporary directory.
+    const std::string tmp = TemporaryPath(path);
+    fs::remove_all(tmp, ec);
+    try {
+        if (!fs::create_directories(tmp, ec) && ec)
+            throw InputError(path, "cannot create a directory beside it: " + ec.message());
+        write(tmp);
+        // Step 3: the old output out, the new one in.
+        fs::remove_all(path, ec);
+        if (ec) throw InputError(path, "cannot remove the earlier output: " + ec.message());
+        Rename(tmp, path);
+    } catch (const InputError&) {
+        fs::remove_all(tmp, ec);
+        throw;
+    } catch (const std::exception& e) {
+        fs::remove_all(tmp, ec);
+        throw InputError(path, e.what());
+    }
+}
+
 void WriteTextAtomic(const std::string& path, const std::string& text) {
     WriteAtomically(path, [&](const std::string& tmp) { WriteText(tmp, text); });
 }

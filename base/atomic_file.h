@@ -32,6 +32,13 @@ void WriteTextAtomic(const std::string& path, const std::string& text);
 // first rename, so a failure leaves none of them changed.
 void WriteTextsAtomic(const std::vector<std::pair<std::string, std::string>>& files);
 
+// A directory written whole: write(tmp) fills the directory `<path>.tmp.<pid>`, which then takes
+// the place of `path`. `path` must be absent, empty or hold `marker` (a previous run's output,
+// replaced); otherwise, before any work, InputError. If write throws, the temporary directory is
+// removed and the error passes on (as InputError naming path when it was another exception).
+void WriteDirectoryAtomically(const std::string& path, const std::string& marker,
+                              const std::function<void(const std::string& tmp)>& write);
+
 // Removes every regular file under dir whose name holds ".tmp" (what killed runs left).
 void RemoveTemporaries(const std::string& dir);
 

@@ -176,6 +176,39 @@ TEST(AtomicFile, SeveralFilesAllOrNone) {
     std::filesystem::remove_all(dir);
 }
 
+// A directory output: refused over a directory that is not an earlier output, left untouched
+// when the writer throws, replaced whole when it returns.
+TEST(AtomicFile, DirectoryAllOrNone) {
+    const auto dir = FreshDir("atomic_dir");
+    const std::string out = (dir / "study").string();
+    std::filesystem::create_directories(out);
+    std::ofstream(out + "/notes.txt") << "mine";
+    int calls = 0;
+    const auto write = [&](const std::string& tmp) {
+        ++calls;
+        WriteTextAtomic(tmp + "/study.json", "new");
+    };
+    EXPECT_THROW(WriteDirectoryAtomically(out, "study.json", write), InputError);
+    EXPECT_EQ(calls, 0);  // refused before any work
+    std::filesystem::remove(out + "/notes.txt");
+    WriteDirectoryAtomically(out, "study.json", write);  // an empty directory is taken
+    EXPECT_EQ(FilesIn(out), 1u);
+    EXPECT_THROW(WriteDirectoryAtomically(out, "study.json",
+                                          [](const std::string& tmp) {
+                                              std::ofstream(tmp + "/half") << "x";
+                                              throw std::runtime_error("disk full");
+                                          }),
+                 InputError);
+    EXPECT_EQ(FilesIn(dir), 1u);  // the earlier output only, no temporary directory
+    EXPECT_TRUE(std::filesystem::exists(out + "/study.json"));
+    WriteDirectoryAtomically(out, "study.json", [](const std::string& tmp) {
+        WriteTextAtomic(tmp + "/study.json", "newer");
+    });
+    std::ifstream in(out + "/study.json");
+    EXPECT_EQ(std::string((std::istreambuf_iterator<char>(in)), {}), "newer");
+    std::filesystem::remove_all(dir);
+}
+
 TEST(AtomicFile, RemoveTemporariesClearsKilledRuns) {
     const auto dir = FreshDir("stale");
     std::filesystem::create_directories(dir / "sub");

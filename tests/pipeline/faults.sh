@@ -35,6 +35,7 @@ commands() {
   echo "stability --json $out/s.json"
   echo "pack $work/ok/pem -o $out/p.pempack --quiet"
   echo "unpack $work/ok.pempack -o $out/u"
+  echo "study $scene --out $out/st --sizes 2 --layouts cube,sphere --size 32x24 --reference-spp 1 --quiet"
 }
 
 # Runs one command (as `who`: root or nobody) with an optional file-size limit in KiB; checks

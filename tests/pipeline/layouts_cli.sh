@@ -5,7 +5,8 @@
 #     envmap attribute), and the hybrid and PEM frames drawn from them at the sample come closer
 #     to the traced two-term frame than the static EM (by 3 dB) on every lens group (the outside check:
 #     masked_psnr against the trace's greedy.exr on b_R's pixels), the cube's figures beside;
-#  2. a 2D PEM is not packed (packs hold cube maps): one error line, no file;
+#  2. a 2D PEM is not packed (packs hold cube maps): one error line, no file; a manifest naming
+#     an unknown layout: one error line;
 #  3. `pemref study` on the mirror sphere at a small size: study.md, study.svg, study.json with
 #     every layout and size, finite scores, map pictures that exist.
 set -euo pipefail
@@ -60,6 +61,15 @@ fi
 [ "$(wc -l <<<"$err")" -eq 1 ] && grep -q "manifest.json.*cube maps only" <<<"$err" ||
   { echo "FAIL: pack of a 2D PEM: expected one line naming manifest.json, got: $err"; exit 1; }
 [ ! -e "$work/l.pempack" ] || { echo "FAIL: a partial pack was left"; exit 1; }
+
+# A manifest naming an unknown layout: one error line naming it.
+cp -r "$work/sphere" "$work/bad"
+sed -i 's/"parameterization": "sphere"/"parameterization": "cylinder"/' "$work/bad/manifest.json"
+if err=$("$pemref" render "$work/bad" --view sample:0 -o "$work/bad.png" --quiet 2>&1); then
+  echo "FAIL: a manifest with an unknown layout was rendered"; exit 1
+fi
+[ "$(wc -l <<<"$err")" -eq 1 ] && grep -q "manifest.json.*unknown parameterization 'cylinder'" <<<"$err" ||
+  { echo "FAIL: unknown layout: expected one line naming manifest.json, got: $err"; exit 1; }
 
 # Step 3: the study.
 "$pemref" study "$data/scenes/mirror_sphere.gltf" --out "$work/study" --sizes 4,16 \

@@ -4,8 +4,8 @@
 
 #include <chrono>
 #include <cstdio>
-#include <filesystem>
 
+#include "base/atomic_file.h"
 #include "base/input_error.h"
 #include "viewer_tty/cli/args.h"
 #include "viewer_tty/report/layout_study.h"
@@ -67,9 +67,12 @@ int RunStudyCommand() {
     const auto t0 = std::chrono::steady_clock::now();
     tty::ProgressLine line("pemref study", a.quiet);
     if (line.Enabled()) o.progress = [&line](const std::string&, double f) { line.Update(f); };
-    std::filesystem::create_directories(o.outDir);
-    const report::LayoutStudy study = report::RunLayoutStudy(o);
-    report::WriteLayoutStudy(study, o.outDir);
+    // The whole study in a temporary directory that replaces DIR when it is done.
+    const std::string outDir = o.outDir;
+    base::WriteDirectoryAtomically(outDir, "study.json", [&](const std::string& tmp) {
+        o.outDir = tmp;
+        report::WriteLayoutStudy(report::RunLayoutStudy(o), tmp);
+    });
     line.Finish();
     if (!a.quiet)
         std::printf(

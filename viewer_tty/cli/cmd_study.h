@@ -5,7 +5,8 @@
 //                [--views circle:N:STEP] [--size WxH] [--spp K] [--reference-spp K]
 //                [--threads N] [--quiet]
 // Outputs: DIR/study.md, study.svg, study.json; per scene DIR/<scene>/trace and one PEM
-// directory per layout and size, DIR/<scene>/<layout>_<size>.
+// directory per layout and size, DIR/<scene>/<layout>_<size>. DIR appears whole when the study is
+// done (base/atomic_file.h WriteDirectoryAtomically): absent, empty or an earlier study.
 #pragma once
 
 #include <CLI/CLI.hpp>
