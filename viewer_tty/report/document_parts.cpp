@@ -48,6 +48,14 @@ std::string P(double v) {
     return Format("%.2f", v);
 }
 
+std::string SvgHeader(double width, double height) {
+    return "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<svg "
+           "xmlns=\"http://www.w3.org/2000/svg\" width=\"" +
+           P(width) + "\" height=\"" + P(height) +
+           "\" font-family=\"sans-serif\" font-size=\"12\">\n<rect width=\"100%\" "
+           "height=\"100%\" fill=\"#fff\"/>\n";
+}
+
 std::string SvgText(double x, double y, const std::string& text, const std::string& attrs) {
     return "<text x=\"" + P(x) + "\" y=\"" + P(y) + "\" " + attrs + ">" + base::XmlEscaped(text) +
            "</text>\n";

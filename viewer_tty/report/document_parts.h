@@ -29,6 +29,9 @@ inline constexpr const char* kColours[] = {"#0072B2", "#D55E00", "#009E73", "#CC
                                            "#E69F00", "#56B4E9", "#000000", "#999999"};
 // A coordinate as SVG writes it (two decimals).
 std::string P(double v);
+// An SVG document's opening: the XML declaration, <svg> of this size (sans-serif, 12 px) and a
+// white background; the caller closes it with "</svg>\n".
+std::string SvgHeader(double width, double height);
 // A <text> element (text escaped) and a <line> element, each with extra attributes.
 std::string SvgText(double x, double y, const std::string& text, const std::string& attrs);
 std::string SvgLine(double x1, double y1, double x2, double y2, const std::string& attrs);

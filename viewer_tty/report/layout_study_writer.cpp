@@ -219,12 +219,7 @@ std::string LayoutStudySvg(const LayoutStudy& s) {
     const size_t cols = std::max<size_t>(1, s.positions.size()), rows = s.scenes.size();
     const double width = kLeft + cols * (kPanelW + kGapX) + kLegendW;
     const double height = kTop + rows * (kPanelH + kGapY);
-    std::string svg =
-        "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<svg "
-        "xmlns=\"http://www.w3.org/2000/svg\" width=\"" +
-        P(width) + "\" height=\"" + P(height) +
-        "\" font-family=\"sans-serif\" font-size=\"12\">\n<rect width=\"100%\" "
-        "height=\"100%\" fill=\"#fff\"/>\n";
+    std::string svg = SvgHeader(width, height);
     svg += SvgText(10, 22, "Hybrid frame PSNR (dB, lens pixels) against level-0 texels per map",
                    "font-size=\"14\" font-weight=\"bold\"");
     for (size_t r = 0; r < rows; ++r)

@@ -373,12 +373,7 @@ std::string BudgetSvg(const ReportData& data) {
     size_t rows = 0;
     for (const GroupBudget& b : data.budget) rows += b.stages.size() + 1;
     const double width = left + 60 * barW + 120, height = top + double(rows) * rowH + 40;
-    std::string svg =
-        "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<svg "
-        "xmlns=\"http://www.w3.org/2000/svg\" width=\"" +
-        P(width) + "\" height=\"" + P(height) +
-        "\" font-family=\"sans-serif\" font-size=\"12\">\n<rect width=\"100%\" "
-        "height=\"100%\" fill=\"#fff\"/>\n";
+    std::string svg = SvgHeader(width, height);
     svg += SvgText(10, 22, "Error budget: PSNR after each stage (bar, dB) and what it cost",
                    "font-size=\"15\" font-weight=\"bold\"");
     double y = top;
@@ -423,12 +418,7 @@ std::string PacksSvg(const ReportData& data) {
     auto Y = [&](double d) {
         return top + (yMax - std::clamp(d, minDelta, yMax)) / (yMax - minDelta) * h;
     };
-    std::string svg =
-        "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<svg "
-        "xmlns=\"http://www.w3.org/2000/svg\" width=\"" +
-        P(left + w + 200) + "\" height=\"" + P(top + h + 60) +
-        "\" font-family=\"sans-serif\" font-size=\"12\">\n<rect width=\"100%\" "
-        "height=\"100%\" fill=\"#fff\"/>\n";
+    std::string svg = SvgHeader(left + w + 200, top + h + 60);
     svg += SvgText(10, 22,
                    "Packed PEMs: hybrid frame's ΔPSNR (" + position + ") vs ratio to the PNG maps",
                    "font-size=\"14\" font-weight=\"bold\"");
