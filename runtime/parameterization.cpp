@@ -124,6 +124,47 @@ raster::Texture EmptyTexture(const MapLayout& layout, const raster::SamplerState
     return t;
 }
 
+int ChartAt(Parameterization p, const glm::dvec2& st) {
+    if (p == Parameterization::Paraboloid) return st.x >= 0.5 ? 1 : 0;
+    if (p == Parameterization::Tennis) return st.y >= 0.5 ? 1 : 0;
+    return 0;
+}
+
+glm::dvec3 LayoutDirection(Parameterization p, const glm::dvec2& st) {
+    const int chart = ChartAt(p, st);
+    switch (p) {
+        case Parameterization::LatLong: {
+            const double phi = (st.x - 0.5) * 2.0 * kPi, theta = st.y * kPi;  // from +Y
+            return {std::sin(theta) * std::sin(phi), std::cos(theta),
+                    -std::sin(theta) * std::cos(phi)};
+        }
+        case Parameterization::Sphere: {
+            // The gazing ball's normal n = (u, v, nz) reflects the view ray (0, 0, -1) into r.
+            const double u = 2.0 * st.x - 1.0, v = 2.0 * st.y - 1.0;
+            const glm::dvec3 n(u, v, std::sqrt(std::max(0.0, 1.0 - u * u - v * v)));
+            const glm::dvec3 in(0.0, 0.0, -1.0);
+            return glm::normalize(in - 2.0 * glm::dot(n, in) * n);
+        }
+        case Parameterization::Paraboloid: {
+            // (u, v) = (x, y) / (1 ± z) solved for a unit direction: |z| = (1 - q) / (1 + q).
+            const double u = 2.0 * (2.0 * st.x - chart) - 1.0, v = 2.0 * st.y - 1.0;
+            const double q = u * u + v * v, a = (1.0 - q) / (1.0 + q);
+            return {u * (1.0 + a), v * (1.0 + a), chart == 0 ? a : -a};
+        }
+        case Parameterization::Tennis: {
+            const double phi = (st.x - 0.5) * 1.5 * kPi;
+            const double theta = (2.0 * st.y - chart - 0.5) * 0.5 * kPi;
+            // Band 0: y = sin θ, (x, -z) at angle φ; band 1: x = sin θ, (y, z) at angle φ.
+            const double c = std::cos(theta);
+            if (chart == 0) return {c * std::sin(phi), std::sin(theta), -c * std::cos(phi)};
+            return {std::sin(theta), c * std::sin(phi), c * std::cos(phi)};
+        }
+        case Parameterization::Cube:
+            break;
+    }
+    throw std::invalid_argument("LayoutDirection: the cube has faces, not 2D coordinates");
+}
+
 glm::mat3 EyeFromWorld(const raster::Camera& camera) {
     return glm::mat3(raster::ViewMatrix(camera));
 }

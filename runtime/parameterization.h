@@ -83,6 +83,14 @@ int ChartOf(Parameterization p, const glm::vec3& dir);
 glm::vec2 ChartCoord(Parameterization p, const glm::vec3& dir, int chart,
                      const glm::mat3& eyeFromWorld);
 
+// The inverse of ChartCoord for a 2D layout: the chart an atlas position (s, t) lies in, and the
+// unit direction it shows (the sphere map's in eye space; outside the sphere map's and the
+// paraboloid's discs the formulas continue past the rim: directions the charts never use).
+// Double precision, for building maps (static_em.h) and checks; throws std::invalid_argument
+// for the cube.
+int ChartAt(Parameterization p, const glm::dvec2& st);
+glm::dvec3 LayoutDirection(Parameterization p, const glm::dvec2& st);
+
 // A pass whose unit `unit` holds cube coordinates, drawn with the layout instead: the cube
 // returns the pass unchanged; a 2D layout gives each triangle its own three corners (triangle
 // order kept, indices dropped) with (s, t, 0) on unit `unit`.

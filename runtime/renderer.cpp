@@ -118,7 +118,7 @@ void CountPaths(const LensPaths& lp, FrameStats* stats) {
 class FrameBatch {
   public:
     // k: subpixels per pixel side (supersampling.h).
-    // parameterization: the maps' layout (the static EM is a cube).
+    // parameterization: the maps' layout.
     FrameBatch(const raster::Camera& camera, int k, const raster::RenderOptions& hardware,
                int threads, PreparedCache* prepared, FrameStats* stats,
                Parameterization parameterization = Parameterization::Cube)
@@ -269,7 +269,12 @@ struct Renderer::Impl {
     std::unique_ptr<trace::EmbreeScene> embree;
     std::unique_ptr<trace::Tracer> tracer;
     std::vector<trace::Shell> singleShells;  // per group (SingleLayerShell)
-    std::map<int, raster::Texture> staticMaps;
+    // Static EMs by (group, layout); a sphere map with the eye space it was traced for.
+    struct StaticMap {
+        raster::Texture texture;
+        glm::mat3 eyeFromWorld{1.0f};
+    };
+    std::map<std::pair<int, Parameterization>, StaticMap> staticMaps;
     PreparedCache prepared;
     std::map<int, std::vector<uint8_t>> hullOf;  // per mirror group: triangles on its hull
     glm::vec3 lensCentre{0.0f};
@@ -304,6 +309,7 @@ struct Renderer::Impl {
                                             : static_cast<double>(maps.hardware.radianceScale);
     }
     std::vector<LayerUse> Uses(const GroupDraw& d, bool pemSplit) const;
+    const raster::Texture& StaticTexture(const GroupDraw& d);
     void DrawStatic(const GroupDraw& d, const GroupGeometry& gg);
     void DrawMaps(const GroupDraw& d, const GroupGeometry& gg, bool pemSplit);
     void DrawGroup(const GroupDraw& d);
@@ -350,21 +356,34 @@ GroupGeometry Renderer::Impl::Geometry(const GroupDraw& d, bool pemSplit) {
     return gg;
 }
 
-// Static EM: one traced cube map per group, looked up with the exit directions.
+// Static EM: one traced map per group (a cube unless the settings name another layout), looked up
+// with the exit directions; a sphere map is traced again when the eye space changes.
+const raster::Texture& Renderer::Impl::StaticTexture(const GroupDraw& d) {
+    const Parameterization p = d.s.staticLayout;
+    const glm::mat3 eyeFromWorld =
+        p == Parameterization::Sphere ? EyeFromWorld(d.camera) : glm::mat3(1.0f);
+    auto it = staticMaps.find({d.group, p});
+    if (it != staticMaps.end() && it->second.eyeFromWorld == eyeFromWorld)
+        return it->second.texture;
+    if (it != staticMaps.end()) prepared.erase(&it->second.texture);  // its address is reused
+    const glm::vec3 origin = maps.groups[static_cast<size_t>(d.group)].emOrigin;
+    const int size = std::min(maps.res, 128);
+    StaticMap m{p == Parameterization::Cube
+                    ? TraceStaticMap(*tracer, d.group, origin, size, threads)
+                    : TraceStaticMap(*tracer, d.group, origin, LayoutOf(p, std::max(2, size)),
+                                     threads, glm::transpose(eyeFromWorld)),
+                eyeFromWorld};
+    return (staticMaps[{d.group, p}] = std::move(m)).texture;
+}
+
 void Renderer::Impl::DrawStatic(const GroupDraw& d, const GroupGeometry& gg) {
-    auto it = staticMaps.find(d.group);
-    if (it == staticMaps.end()) {
-        const glm::vec3 origin = maps.groups[static_cast<size_t>(d.group)].emOrigin;
-        it = staticMaps
-                 .emplace(d.group, TraceStaticMap(*tracer, d.group, origin, std::min(maps.res, 128),
-                                                  threads))
-                 .first;
-    }
-    FrameBatch batch(d.camera, d.k, Hardware(d.s), d.s.threads, &prepared, d.stats);
+    const raster::Texture& map = StaticTexture(d);
+    FrameBatch batch(d.camera, d.k, Hardware(d.s), d.s.threads, &prepared, d.stats,
+                     d.s.staticLayout);
     for (int term = 0; term < maps.groups[static_cast<size_t>(d.group)].Terms(); ++term) {
         std::vector<glm::vec3> dirs(gg.exits[term].size());
         for (size_t v = 0; v < dirs.size(); ++v) dirs[v] = gg.exits[term][v].dir;
-        batch.Add({&it->second}, {dirs}, gg.exits[term], 1.0, {&gg.all});
+        batch.Add({&map}, {dirs}, gg.exits[term], 1.0, {&gg.all});
     }
     batch.Draw(d.pixels, d.acc, *d.border, d.borderSamples);
 }

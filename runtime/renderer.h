@@ -54,6 +54,9 @@ struct RenderSettings {
     int layers = 0;     // 0: all layers; 1: the outermost only
     int threads = 1;
     std::string profile;  // the hardware that draws (raster/profile.h); "": the maps' profile
+    // StaticEm: the map's layout (parameterization.h; the sphere map traced in each frame's eye
+    // space). The PEM methods draw the maps' own layout (MapSet::parameterization).
+    Parameterization staticLayout = Parameterization::Cube;
 };
 
 struct FrameStats {

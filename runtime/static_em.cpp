@@ -19,44 +19,57 @@ glm::vec3 FaceDirection(int face, float s, float t) {
     return {d[0], d[1], d[2]};
 }
 
+// The world direction of texel (face, i, j) of an n_w x n_h level 0 of the layout.
+glm::vec3 TexelDirection(const MapLayout& layout, int face, int i, int j,
+                         const glm::mat3& worldFromEye) {
+    const double s = (i + 0.5) / layout.width, t = (j + 0.5) / layout.height;
+    if (layout.kind == raster::TextureKind::Cube)
+        return glm::normalize(FaceDirection(face, static_cast<float>(s), static_cast<float>(t)));
+    glm::vec3 d(LayoutDirection(layout.parameterization, {s, t}));
+    if (layout.parameterization == Parameterization::Sphere) d = worldFromEye * d;
+    return glm::normalize(d);
+}
+
 // Level 0: the radiance seen from `origin` through each texel centre, the group left out.
 std::vector<float> TraceLevel0(const trace::Tracer& tracer, int group, const glm::vec3& origin,
-                               int n, int threads) {
-    std::vector<float> level0(static_cast<size_t>(6 * n * n) * 4, 0.0f);
-    base::ParallelFor(6 * n, threads, [&](int row) {
-        const int f = row / n, j = row % n;
+                               const MapLayout& layout, const glm::mat3& worldFromEye,
+                               int threads) {
+    const int faces = layout.charts == 6 ? 6 : 1, w = layout.width, h = layout.height;
+    std::vector<float> level0(static_cast<size_t>(faces * w * h) * 4, 0.0f);
+    base::ParallelFor(faces * h, threads, [&](int row) {
+        const int f = row / h, j = row % h;
         trace::RayCounts counts;
-        for (int i = 0; i < n; ++i) {
-            const glm::vec3 d = glm::normalize(
-                FaceDirection(f, (static_cast<float>(i) + 0.5f) / static_cast<float>(n),
-                              (static_cast<float>(j) + 0.5f) / static_cast<float>(n)));
-            const raster::Ray ray{origin, d};
+        for (int i = 0; i < w; ++i) {
+            const raster::Ray ray{origin, TexelDirection(layout, f, i, j, worldFromEye)};
             const std::vector<trace::Hit> hits = trace::EnvironmentHits(tracer, ray, group, counts);
             const trace::Hit hit = hits.empty() ? trace::Hit{} : hits.front();
             const glm::vec3 l =
                 tracer.HitRadiance(ray, hit, tracer.options().fullTreeDepth, 1.0, counts);
-            float* p = &level0[((static_cast<size_t>(f) * n + j) * n + i) * 4];
+            float* p = &level0[((static_cast<size_t>(f) * h + j) * w + i) * 4];
             p[0] = l.x, p[1] = l.y, p[2] = l.z, p[3] = 1.0f;
         }
     });
     return level0;
 }
 
-// The next MIP level: 2×2 means.
-std::vector<float> HalveLevel(const std::vector<float>& cur, int m) {
-    const int h = m / 2;
-    std::vector<float> next(static_cast<size_t>(6 * h * h) * 4, 0.0f);
-    for (int f = 0; f < 6; ++f)
-        for (int j = 0; j < h; ++j)
-            for (int i = 0; i < h; ++i)
+// The next MIP level of a faces x w x h level: means of the 2x2 (2x1, 1x2) texels it covers.
+std::vector<float> HalveLevel(const std::vector<float>& cur, int faces, int w, int h) {
+    const int nw = std::max(1, w / 2), nh = std::max(1, h / 2);
+    const int sx = w > 1 ? 2 : 1, sy = h > 1 ? 2 : 1;
+    const float weight = 1.0f / static_cast<float>(sx * sy);
+    std::vector<float> next(static_cast<size_t>(faces * nw * nh) * 4, 0.0f);
+    for (int f = 0; f < faces; ++f)
+        for (int j = 0; j < nh; ++j)
+            for (int i = 0; i < nw; ++i)
                 for (int c = 0; c < 4; ++c) {
                     float s = 0.0f;
-                    for (int dj = 0; dj < 2; ++dj)
-                        for (int di = 0; di < 2; ++di)
-                            s += cur[((static_cast<size_t>(f) * m + 2 * j + dj) * m + 2 * i + di) *
-                                         4 +
-                                     c];
-                    next[((static_cast<size_t>(f) * h + j) * h + i) * 4 + c] = 0.25f * s;
+                    for (int dj = 0; dj < sy; ++dj)
+                        for (int di = 0; di < sx; ++di)
+                            s +=
+                                cur[((static_cast<size_t>(f) * h + sy * j + dj) * w + sx * i + di) *
+                                        4 +
+                                    c];
+                    next[((static_cast<size_t>(f) * nh + j) * nw + i) * 4 + c] = weight * s;
                 }
     return next;
 }
@@ -64,21 +77,28 @@ std::vector<float> HalveLevel(const std::vector<float>& cur, int m) {
 }  // namespace
 
 raster::Texture TraceStaticMap(const trace::Tracer& tracer, int group, const glm::vec3& origin,
-                               int size, int threads) {
-    raster::Texture tex;
-    tex.kind = raster::TextureKind::Cube;
-    tex.width = tex.height = size;
-    std::vector<float> cur = TraceLevel0(tracer, group, origin, size, threads);
-    for (int m = size; m >= 1; m /= 2) {
-        std::vector<uint8_t> bytes(cur.size());
+                               const MapLayout& layout, int threads,
+                               const glm::mat3& worldFromEye) {
+    raster::Texture tex = EmptyTexture(layout, raster::SamplerState{});
+    const int faces = tex.Faces();
+    std::vector<float> cur = TraceLevel0(tracer, group, origin, layout, worldFromEye, threads);
+    for (int l = 0; l < tex.NumLevels(); ++l) {
+        std::vector<uint8_t>& bytes = tex.levels[static_cast<size_t>(l)];
         for (size_t k = 0; k < cur.size(); ++k)
             bytes[k] =
                 static_cast<uint8_t>(std::nearbyint(std::clamp(cur[k], 0.0f, 1.0f) * 255.0f));
-        tex.levels.push_back(std::move(bytes));
-        if (m == 1) break;
-        cur = HalveLevel(cur, m);
+        if (l + 1 < tex.NumLevels())
+            cur = HalveLevel(cur, faces, tex.LevelWidth(l), tex.LevelHeight(l));
     }
     return tex;
+}
+
+raster::Texture TraceStaticMap(const trace::Tracer& tracer, int group, const glm::vec3& origin,
+                               int size, int threads) {
+    MapLayout cube;  // LayoutOf's, for any power of two (1 included)
+    cube.width = cube.height = size;
+    cube.charts = 6;
+    return TraceStaticMap(tracer, group, origin, cube, threads);
 }
 
 }  // namespace pem::runtime

@@ -5,6 +5,8 @@
 #     envmap attribute), and the hybrid and PEM frames drawn from them at the sample come closer
 #     to the traced two-term frame than the static EM (by 3 dB) on every lens group (the outside check:
 #     masked_psnr against the trace's greedy.exr on b_R's pixels), the cube's figures beside;
+#     the static EM traced in each layout (render --parameterization) within 2 dB of the
+#     cube's, and the PEM methods refusing a layout that is not their maps';
 #  2. a 2D PEM is not packed (packs hold cube maps): one error line, no file; a manifest naming
 #     an unknown layout: one error line;
 #  3. `pemref study` on the mirror sphere at a small size: study.md, study.svg, study.json with
@@ -54,6 +56,35 @@ for g in 0 1; do
   echo "$line"
 done
 
+# The static EM in each layout (render --parameterization, traced in the layout at the PEM's
+# size): the same environment sampled differently, so within 2 dB of the cube's on each group
+# (1.4 measured: lat-long's poles and the sphere map's rim on the mirror cup).
+for p in cube latlong sphere paraboloid tennis; do
+  "$pemref" render "$work/cube" --view sample:0 --method static --parameterization "$p" \
+      --threads 2 --quiet -o "$work/static_$p.exr"
+done
+cmp "$work/static_cube.exr" "$work/static.exr" ||
+  { echo "FAIL: static EM: the cube layout differs from the default"; exit 1; }
+for g in 0 1; do
+  mask="$work/trace/view_000/group_$g/b_R.exr"
+  read -r cube_db _ < <("$masked_psnr" "$work/static.exr" "$work/trace/view_000/greedy.exr" "$mask")
+  line="group $g static EM: cube $cube_db"
+  for p in latlong sphere paraboloid tennis; do
+    read -r db _ < <("$masked_psnr" "$work/static_$p.exr" "$work/trace/view_000/greedy.exr" "$mask")
+    line+=", $p $db"
+    awk -v a="$db" -v c="$cube_db" 'BEGIN { exit !(a >= c - 2 && a <= c + 2) }' ||
+      { echo "FAIL: $line: not within 2 dB of the cube's static EM"; exit 1; }
+  done
+  echo "$line"
+done
+# The PEM methods draw the maps' own layout: another one is one error line.
+if err=$("$pemref" render "$work/cube" --view sample:0 --method hybrid --parameterization sphere \
+    -o "$work/no.png" --quiet 2>&1); then
+  echo "FAIL: cube maps drawn as sphere maps"; exit 1
+fi
+[ "$(wc -l <<<"$err")" -eq 1 ] && grep -q "holds cube maps" <<<"$err" ||
+  { echo "FAIL: --parameterization against the maps' layout: got: $err"; exit 1; }
+
 # Step 2: no pack of 2D maps.
 if err=$("$pemref" pack "$work/latlong" -o "$work/l.pempack" --quiet 2>&1); then
   echo "FAIL: a lat-long PEM was packed"; exit 1
@@ -85,7 +116,7 @@ assert len(points) == 10, len(points)
 texels = {"cube": 6, "latlong": 2, "sphere": 1, "paraboloid": 2, "tennis": 2}
 for p in points:
     assert p["texels"] == texels[p["layout"]] * p["size"] ** 2, p
-    assert len(p["scores"]) == 6, p  # 3 positions x (hybrid, layered PEM)
+    assert len(p["scores"]) == 9, p  # 3 positions x (hybrid, layered PEM, static EM)
     for q in p["scores"]:
         assert q["psnr"] is not None and math.isfinite(q["psnr"]), p
     assert os.path.exists(f"{d}/{p['picture']}"), p["picture"]
@@ -95,6 +126,12 @@ for name in layouts:
     assert f"| {name} | 16 |" in md, name
 svg = open(f"{d}/study.svg").read()
 assert svg.count("<polyline") == 5 * 3, svg.count("<polyline")
-print("study: 10 points, every layout and position scored")
+# The inferred maps beat the static EM of the same layout and size on the sample (8 and 16 texels
+# a side hold little; the static EM is one map for every view, the PEM the sample's own).
+for p in points:
+    if p["size"] == 16:
+        on = {q["method"]: q["psnr"] for q in p["scores"] if q["position"] == "on circle"}
+        assert on["hybrid"] > on["static EM"], p
+print("study: 10 points, every layout, method and position scored")
 PY
 echo "PASS: layouts_cli"

@@ -62,16 +62,17 @@ void AddMapSizeOptions(CLI::App* sub, int* res, int* maxRes) {
                     "two, >= --res; PEM §4 EM resolution)");
 }
 
-void AddParameterizationOption(CLI::App* sub, runtime::Parameterization* parameterization) {
+CLI::Option* AddParameterizationOption(CLI::App* sub, runtime::Parameterization* parameterization) {
     std::string names;
     for (runtime::Parameterization p : runtime::kParameterizations)
         names += (names.empty() ? "" : "|") + std::string(runtime::ParameterizationName(p));
-    sub->add_option_function<std::string>(
-           "--parameterization",
-           [parameterization](const std::string& v) {
-               *parameterization = *runtime::ParseParameterization(v);
-           },
-           "the maps' layout: " + names + " (default cube)")
+    return sub
+        ->add_option_function<std::string>(
+            "--parameterization",
+            [parameterization](const std::string& v) {
+                *parameterization = *runtime::ParseParameterization(v);
+            },
+            "the maps' layout: " + names + " (default cube)")
         ->check([names](const std::string& v) -> std::string {
             return runtime::ParseParameterization(v) ? "" : "expected one of " + names;
         });

@@ -36,7 +36,7 @@ void AddMapHardwareOptions(CLI::App* sub, runtime::MapHardware* hardware);
 void AddMapSizeOptions(CLI::App* sub, int* res, int* maxRes);
 
 // --parameterization NAME: the maps' layout (runtime/parameterization.h).
-void AddParameterizationOption(CLI::App* sub, runtime::Parameterization* parameterization);
+CLI::Option* AddParameterizationOption(CLI::App* sub, runtime::Parameterization* parameterization);
 
 // pemref's version ("0.1.0", the project's CMake version).
 std::string PemrefVersion();

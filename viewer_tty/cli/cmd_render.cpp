@@ -27,6 +27,8 @@ struct RenderArgs {
     int spp = 3, subpixels = 0, layers = 0, threads = 1, repeat = 0;
     float exposure = 1.0f;
     bool quiet = false;
+    runtime::Parameterization layout = runtime::Parameterization::Cube;
+    CLI::Option* layoutOption = nullptr;  // given: --parameterization
 };
 
 RenderArgs& Args() {
@@ -58,6 +60,10 @@ void AddRenderCommand(CLI::App& app) {
         ->check(CLI::Range(0, 1));
     sub->add_option("--threads", a.threads, "worker threads")->check(CLI::Range(1, 256));
     AddProfileOption(sub, &a.profile);
+    a.layoutOption = AddParameterizationOption(sub, &a.layout);
+    a.layoutOption->description(
+        "the static EM's layout (--method static; the PEM methods draw the maps' own, which "
+        "this must then name)");
     sub->add_option("--stats", a.stats, "per-frame statistics (JSON)");
     sub->add_option("--exposure", a.exposure, "PNG exposure")->check(CLI::Range(0.0, 1e6));
     sub->add_option("--repeat", a.repeat, "render N more times and report the median times")
@@ -138,6 +144,20 @@ json StatsJson(const RenderArgs& a, runtime::Renderer& renderer, const raster::C
     return j;
 }
 
+// --parameterization: any layout for the static EM; for the PEM methods the maps' own.
+runtime::Parameterization CheckedLayout(const RenderArgs& a, const runtime::Renderer& renderer,
+                                        runtime::Method method) {
+    const runtime::Parameterization own = renderer.maps().parameterization;
+    if (method != runtime::Method::StaticEm && method != runtime::Method::RayTraced &&
+        a.layout != own)
+        throw base::InputError(
+            "--parameterization " + std::string(runtime::ParameterizationName(a.layout)),
+            a.pemDir + " holds " + std::string(runtime::ParameterizationName(own)) +
+                " maps (its manifest.json); only --method static draws another layout (or "
+                "infer again with this one)");
+    return a.layout;
+}
+
 }  // namespace
 
 int RunRenderCommand() {
@@ -154,6 +174,7 @@ int RunRenderCommand() {
     s.t = a.t, s.spp = a.spp, s.subpixels = a.subpixels, s.layers = a.layers;
     s.threads = a.threads;
     s.profile = a.profile;
+    if (a.layoutOption->count() > 0) s.staticLayout = CheckedLayout(a, *renderer, s.method);
     runtime::RenderedFrame f = renderer->Render(camera, s);
     if (a.repeat > 0) MedianTimes(*renderer, camera, s, a.repeat, &f.stats);
     if (EndsWith(a.out, ".exr"))

@@ -35,13 +35,10 @@ std::string SceneName(const std::string& path) {
     return fs::path(path).stem().string();
 }
 
-// The methods each position is scored with.
-struct StudyMethod {
-    const char* name;
-    runtime::Method method;
-};
-constexpr StudyMethod kMethods[] = {{"hybrid", runtime::Method::Hybrid},
-                                    {"layered PEM", runtime::Method::Pem}};
+// The renderer's method of each of kStudyMethods.
+constexpr runtime::Method kMethodOf[] = {runtime::Method::Hybrid, runtime::Method::Pem,
+                                         runtime::Method::StaticEm};
+static_assert(std::size(kMethodOf) == std::size(kStudyMethods));
 
 // The reference frame of each position (the ray tracer, full tree, K×K) and its lens pixels.
 struct Reference {
@@ -103,14 +100,15 @@ LayoutPoint InferPoint(const std::string& scene, const std::string& traceDir,
 void ScorePoint(runtime::Renderer& renderer, const std::vector<Position>& at,
                 const std::vector<Reference>& refs, const LayoutStudyOptions& o, LayoutPoint* pt) {
     for (size_t k = 0; k < at.size(); ++k)
-        for (const StudyMethod& m : kMethods) {
+        for (size_t m = 0; m < std::size(kStudyMethods); ++m) {
             runtime::RenderSettings s;
-            s.method = m.method;
+            s.method = kMethodOf[m];
+            s.staticLayout = pt->layout;
             s.threads = o.threads;
             renderer.Render(at[k].camera, s);  // warm: maps loaded, passes prepared
             const runtime::RenderedFrame f = renderer.Render(at[k].camera, s);
             const ImageScores q = Compare8Bit(ToMetric(f.image), refs[k].image, &refs[k].mask);
-            pt->scores.push_back({at[k].name, m.name, q.psnr, f.stats.totalSeconds});
+            pt->scores.push_back({at[k].name, kStudyMethods[m], q.psnr, f.stats.totalSeconds});
         }
 }
 

@@ -11,10 +11,10 @@
 // Per scene: one trace (outDir/<scene>/trace); per layout and size, the maps of every sample
 // inferred from it (outDir/<scene>/<layout>_<size>/, a PEM directory `pemref render` reads);
 // then, at the report's three positions (positions.h: on a sample, between two, 10° above), the
-// hybrid and layered-PEM frames against a K×K ray-traced reference (8-bit PSNR over the lens
-// pixels, as the report scores), and the run time of inference and of the hybrid frame.
-// Every solve uses the same trace, regularizer and hardware; only the layout and its size change.
-// Not here: the documents (layout_study_writer.h), the command line (cli/cmd_study.cpp).
+// hybrid, layered-PEM and static-EM frames against a K×K ray-traced reference (8-bit PSNR over the
+// lens pixels, as the report scores), and the run time of inference and of the hybrid frame. Every
+// solve uses the same trace, regularizer and hardware; only the layout and its size change. Not
+// here: the documents (layout_study_writer.h), the command line (cli/cmd_study.cpp).
 #pragma once
 
 #include <cstdint>
@@ -41,9 +41,14 @@ struct LayoutStudyOptions {
     std::function<void(const std::string& stage, double fraction)> progress;
 };
 
+// The methods each position is scored with: the maps inferred in the layout drawn by the hybrid
+// renderer and in layered-PEM mode, and the static EM traced in the same layout and size (the
+// layout's sampling without inference).
+inline constexpr const char* kStudyMethods[] = {"hybrid", "layered PEM", "static EM"};
+
 // One frame's score at one position.
 struct LayoutScore {
-    std::string position, method;  // "on circle" ...; "hybrid", "layered PEM"
+    std::string position, method;  // "on circle" ...; one of kStudyMethods
     double psnr = 0.0;             // 8-bit, lens pixels, against the reference (dB)
     double seconds = 0.0;          // the whole frame
 };

@@ -34,7 +34,7 @@ double FrameSeconds(const LayoutPoint& p, const std::string& position, const std
 std::string SceneTable(const LayoutStudy& s, const std::string& scene) {
     std::vector<std::string> names = {"layout", "size", "texels", "fit rmse", "infer s/sample"};
     std::string align = "lrrrr";
-    for (const char* method : {"hybrid", "layered PEM"})
+    for (const char* method : kStudyMethods)
         for (const std::string& pos : s.positions) {
             names.push_back(std::string(method) + " " + pos + " (dB)");
             align += 'r';
@@ -46,7 +46,7 @@ std::string SceneTable(const LayoutStudy& s, const std::string& scene) {
         std::vector<std::string> row = {LayoutName(p->layout), std::to_string(p->size),
                                         std::to_string(p->texels), Num(p->rmse8, "%.4f"),
                                         Num(p->inferSeconds, "%.2f")};
-        for (const char* method : {"hybrid", "layered PEM"})
+        for (const char* method : kStudyMethods)
             for (const std::string& pos : s.positions)
                 row.push_back(Num(p->Psnr(pos, method), "%.2f"));
         row.push_back(Num(1e3 * FrameSeconds(*p, s.positions.front(), "hybrid"), "%.0f"));

@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: MIT
 // layout_study_writer.h — the parameterization study's documents: study.md (per scene, a table
-// of every layout and size: texels, fit residual, inference time, hybrid and layered-PEM PSNR on,
-// between and above the samples, frame time; then a picture of each layout's map), study.svg
-// (hybrid PSNR against texels, one curve per layout, one panel per scene and position) and
-// study.json (every figure). Each file appears atomically.
+// of every layout and size: texels, fit residual, inference time, hybrid, layered-PEM and static-EM
+// PSNR on, between and above the samples, frame time; then a picture of each layout's map),
+// study.svg (hybrid PSNR against texels, one curve per layout, one panel per scene and position)
+// and study.json (every figure). Each file appears atomically.
 //
 //   WriteLayoutStudy(RunLayoutStudy(options), "out/study");
 //
