@@ -10,7 +10,8 @@
 #  2. a 2D PEM is not packed (packs hold cube maps): one error line, no file; a manifest naming
 #     an unknown layout: one error line;
 #  3. `pemref study` on the mirror sphere at a small size: study.md, study.svg, study.json with
-#     every layout and size, finite scores, map pictures that exist.
+#     every layout and size, finite scores, map pictures that exist; impossible studies (a size
+#     or layout twice, a size that is not a power of two, an unknown layout) one error line each.
 set -euo pipefail
 pemref=$1 data=$2 masked_psnr=$3
 work=$(mktemp -d "${TMPDIR:-/tmp}/pem_layouts.XXXXXX")
@@ -134,4 +135,12 @@ for p in points:
         assert on["hybrid"] > on["static EM"], p
 print("study: 10 points, every layout, method and position scored")
 PY
+# Impossible studies: one error line each, nothing written.
+for bad in "--sizes 4,4" "--sizes 3" "--layouts cube,cube" "--layouts cylinder"; do
+  if err=$("$pemref" study "$data/scenes/mirror_sphere.gltf" --out "$work/nostudy" $bad --quiet 2>&1); then
+    echo "FAIL: study $bad accepted"; exit 1
+  fi
+  [ "$(wc -l <<<"$err")" -eq 1 ] && [ ! -e "$work/nostudy" ] ||
+    { echo "FAIL: study $bad: expected one error line and no output, got: $err"; exit 1; }
+done
 echo "PASS: layouts_cli"

@@ -2,6 +2,7 @@
 // layout_study.cpp — the parameterization study's measurements (layout_study.h).
 #include "viewer_tty/report/layout_study.h"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <limits>
@@ -19,6 +20,18 @@ namespace {
 
 namespace fs = std::filesystem;
 
+std::string SceneName(const std::string& path) {
+    return fs::path(path).stem().string();
+}
+
+// The first element equal to an earlier one, or end.
+template <typename T>
+typename std::vector<T>::const_iterator FirstRepeat(const std::vector<T>& v) {
+    for (auto it = v.begin(); it != v.end(); ++it)
+        if (std::find(v.begin(), it, *it) != it) return it;
+    return v.end();
+}
+
 void CheckOptions(const LayoutStudyOptions& o) {
     if (o.scenes.empty()) throw base::InputError("pemref study", "no scene given");
     if (o.layouts.empty()) throw base::InputError("--layouts", "no layout given");
@@ -27,12 +40,20 @@ void CheckOptions(const LayoutStudyOptions& o) {
         if (s < 2 || s > 1024 || (s & (s - 1)) != 0)
             throw base::InputError("--sizes " + std::to_string(s),
                                    "expected powers of two in [2, 1024]");
-    for (const std::string& scene : o.scenes)
+    if (auto it = FirstRepeat(o.sizes); it != o.sizes.end())
+        throw base::InputError("--sizes " + std::to_string(*it), "given twice");
+    if (auto it = FirstRepeat(o.layouts); it != o.layouts.end())
+        throw base::InputError("--layouts " + std::string(runtime::ParameterizationName(*it)),
+                               "given twice");
+    std::vector<std::string> names;  // each scene's folder
+    for (const std::string& scene : o.scenes) {
         if (!fs::is_regular_file(scene)) throw base::InputError(scene, "scene not found");
-}
-
-std::string SceneName(const std::string& path) {
-    return fs::path(path).stem().string();
+        names.push_back(SceneName(scene));
+    }
+    if (auto it = FirstRepeat(names); it != names.end())
+        throw base::InputError(o.scenes[static_cast<size_t>(it - names.begin())],
+                               "another scene of the study has the same name (" + *it +
+                                   "): they would share a folder");
 }
 
 // The renderer's method of each of kStudyMethods.
