@@ -27,6 +27,7 @@ EnvMapF EnvMapFromSolution(const Vector& x, const TexelLayout& layout) {
     map.kind = layout.kind;
     map.size = layout.size;
     map.height = layout.LevelHeight(0);
+    map.charts = map.IsCube() ? 1 : layout.charts;
     size_t k = 0;
     for (int l = 0; l < layout.levels; ++l) {
         std::vector<float> level(map.LevelTexels(l) * kChannels);
@@ -43,49 +44,49 @@ Vector SolutionFromEnvMap(const EnvMapF& map) {
     return x;
 }
 
-raster::Texture ToTexture8(const EnvMapF& map, const raster::SamplerState& sampler) {
-    raster::Texture t;
-    t.kind = map.kind;
-    t.width = map.size;
-    t.height = map.LevelHeight(0);
-    t.sampler = sampler;
-    for (const auto& level : map.levels) {
-        std::vector<uint8_t> bytes(level.size());
-        for (size_t k = 0; k < level.size(); ++k) bytes[k] = ToByte(level[k]);
-        t.levels.push_back(std::move(bytes));
+std::vector<raster::Texture> ToTextures8(const EnvMapF& map, const raster::SamplerState& sampler) {
+    std::vector<raster::Texture> out(map.IsCube() ? 1 : static_cast<size_t>(map.charts));
+    for (size_t c = 0; c < out.size(); ++c) {
+        raster::Texture& t = out[c];
+        t.kind = map.kind;
+        t.width = map.size;
+        t.height = map.LevelHeight(0);
+        t.sampler = sampler;
+        for (const auto& level : map.levels) {
+            // Step: this chart's share of the level (a cube: all of it).
+            const size_t n = level.size() / out.size();
+            std::vector<uint8_t> bytes(n);
+            for (size_t k = 0; k < n; ++k) bytes[k] = ToByte(level[c * n + k]);
+            t.levels.push_back(std::move(bytes));
+        }
     }
-    return t;
+    return out;
 }
 
-raster::Texture Texture8FromSolution(const Vector& x, const TexelLayout& layout,
-                                     const raster::SamplerState& sampler) {
-    if (layout.firstTexel != 0 || static_cast<int64_t>(x.size()) != kChannels * layout.TexelCount())
-        throw std::invalid_argument("Texture8FromSolution: size differs from the layout");
-    raster::Texture t;
-    t.kind = layout.kind;
-    t.width = layout.size;
-    t.height = layout.LevelHeight(0);
-    t.sampler = sampler;
-    for (int l = 0; l < layout.levels; ++l) {
-        const size_t begin = size_t{kChannels} * layout.LevelBase(l);
-        const size_t end = size_t{kChannels} * layout.LevelBase(l + 1);
-        std::vector<uint8_t> bytes(end - begin);
-        for (size_t k = begin; k < end; ++k) bytes[k - begin] = ToByte(static_cast<float>(x[k]));
-        t.levels.push_back(std::move(bytes));
-    }
-    return t;
+std::vector<raster::Texture> Texture8FromSolution(const Vector& x, const TexelLayout& layout,
+                                                  const raster::SamplerState& sampler) {
+    return ToTextures8(EnvMapFromSolution(x, layout), sampler);
 }
 
-EnvMapF FromTexture8(const raster::Texture& texture) {
-    if (texture.kind != raster::TextureKind::Cube && texture.kind != raster::TextureKind::Tex2D)
-        throw std::invalid_argument("FromTexture8: neither a cube nor a 2D texture");
+EnvMapF FromTextures8(std::span<const raster::Texture> textures) {
+    if (textures.empty() ||
+        (textures[0].kind != raster::TextureKind::Cube &&
+         textures[0].kind != raster::TextureKind::Tex2D) ||
+        (textures[0].kind == raster::TextureKind::Cube && textures.size() != 1))
+        throw std::invalid_argument("FromTextures8: neither a cube nor 2D textures");
+    for (const raster::Texture& t : textures)
+        if (t.kind != textures[0].kind || t.width != textures[0].width ||
+            t.height != textures[0].height || t.levels.size() != textures[0].levels.size())
+            throw std::invalid_argument("FromTextures8: the charts differ in shape");
     EnvMapF map;
-    map.kind = texture.kind;
-    map.size = texture.width;
-    map.height = texture.height;
-    for (const auto& level : texture.levels) {
-        std::vector<float> values(level.size());
-        for (size_t k = 0; k < level.size(); ++k) values[k] = static_cast<float>(level[k] / 255.0);
+    map.kind = textures[0].kind;
+    map.size = textures[0].width;
+    map.height = textures[0].height;
+    map.charts = static_cast<int>(textures.size());
+    for (size_t l = 0; l < textures[0].levels.size(); ++l) {
+        std::vector<float> values;
+        for (const raster::Texture& t : textures)
+            for (uint8_t b : t.levels[l]) values.push_back(static_cast<float>(b / 255.0));
         map.levels.push_back(std::move(values));
     }
     return map;

@@ -6,13 +6,16 @@
 // Conventions: levels[l] holds the level's texels of 4 floats (RGBA, premultiplied as the pixels
 // are) in raster::Texture's order: a cube's 6 * n_l * n_l face-major in GL face order, texel
 // (i, j) at ((face * n_l + j) * n_l + i) * 4; a 2D map's w_l * h_l rows, texel (i, j) at
-// (j * w_l + i) * 4; n_l = max(1, size >> l) (h_l likewise from height). The same layout as
-// raster/texel_index.h, so the solver's column 4 * texel + c maps to element 4 * texel + c of
-// the concatenated levels. The 8-bit copy is what the hardware gets: RNE(clamp(v, 0, 1) * 255)
+// (j * w_l + i) * 4; n_l = max(1, size >> l) (h_l likewise from height). A map of a two-image
+// layout (runtime/parameterization.h) has two charts, stored as a 2D map's faces: level l holds
+// chart 0's w_l * h_l texels, then chart 1's. The solver's local order (regularizer.h), so its
+// column 4 * texel + c maps to element 4 * texel + c of the concatenated levels. The 8-bit copy
+// is what the hardware gets, one texture per chart (a cube: one): RNE(clamp(v, 0, 1) * 255)
 // per component.
 // Not here: files (pem_file.h).
 #pragma once
 
+#include <span>
 #include <vector>
 
 #include "infer/regularizer.h"
@@ -25,9 +28,11 @@ struct EnvMapF {
     raster::TextureKind kind = raster::TextureKind::Cube;
     int size = 0;                            // level-0 width (a cube's face size)
     int height = 0;                          // level-0 height of a 2D map (cubes: ignored, = size)
+    int charts = 1;                          // a 2D map's images (textures): 1 or 2
     std::vector<std::vector<float>> levels;  // see the header comment
 
     bool IsCube() const { return kind == raster::TextureKind::Cube; }
+    int Faces() const { return IsCube() ? 6 : charts; }
     int NumLevels() const { return static_cast<int>(levels.size()); }
     int LevelSize(int level) const { return std::max(1, size >> level); }
     int LevelHeight(int level) const {
@@ -35,12 +40,12 @@ struct EnvMapF {
     }
     // Texels of one level, every face.
     size_t LevelTexels(int level) const {
-        return size_t{IsCube() ? 6u : 1u} * static_cast<size_t>(LevelSize(level)) *
+        return static_cast<size_t>(Faces()) * static_cast<size_t>(LevelSize(level)) *
                static_cast<size_t>(LevelHeight(level));
     }
     bool operator==(const EnvMapF& o) const {
         return kind == o.kind && size == o.size && LevelHeight(0) == o.LevelHeight(0) &&
-               levels == o.levels;
+               Faces() == o.Faces() && levels == o.levels;
     }
 };
 
@@ -49,14 +54,14 @@ struct EnvMapF {
 EnvMapF EnvMapFromSolution(const Vector& x, const TexelLayout& layout);
 Vector SolutionFromEnvMap(const EnvMapF& map);
 
-// The 8-bit copy of a solution over every local texel of `layout` (a cube or a 2D texture of
-// runtime/parameterization.h's layouts), with the given sampler state.
-raster::Texture Texture8FromSolution(const Vector& x, const TexelLayout& layout,
-                                     const raster::SamplerState& sampler);
+// The 8-bit copy of a solution over every local texel of `layout` (a cube or a 2D map of
+// runtime/parameterization.h's layouts), with the given sampler state: one texture per chart.
+std::vector<raster::Texture> Texture8FromSolution(const Vector& x, const TexelLayout& layout,
+                                                  const raster::SamplerState& sampler);
 
-// The 8-bit copy with the given sampler state (a 2D map keeps the sampler's wrap modes), and
-// the inverse conversion (bytes / 255).
-raster::Texture ToTexture8(const EnvMapF& map, const raster::SamplerState& sampler);
-EnvMapF FromTexture8(const raster::Texture& texture);
+// The 8-bit copy with the given sampler state (a 2D map keeps the sampler's wrap modes), one
+// texture per chart, and the inverse conversion (bytes / 255) of a map's textures.
+std::vector<raster::Texture> ToTextures8(const EnvMapF& map, const raster::SamplerState& sampler);
+EnvMapF FromTextures8(std::span<const raster::Texture> textures);
 
 }  // namespace pem::infer

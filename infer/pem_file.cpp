@@ -13,6 +13,7 @@
 #include <ImfTiledInputFile.h>
 #include <ImfTiledOutputFile.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <stdexcept>
@@ -25,6 +26,7 @@ namespace pem::infer {
 namespace {
 
 constexpr const char* kLevelsAttribute = "pemrefLevels";
+constexpr const char* kChartsAttribute = "pemrefCharts";
 constexpr const char* kChannelNames[kChannels] = {"R", "G", "B", "A"};
 constexpr int kTileSize = 32;
 
@@ -96,6 +98,28 @@ std::array<float, kChannels> CoarsestMean(const EnvMapF& map) {
     return mean;
 }
 
+// A 2D level's charts (face-major) as one image, chart c at columns [c w, (c + 1) w).
+std::vector<float> ChartsSideBySide(const std::vector<float>& level, int charts, int w, int h) {
+    std::vector<float> px(level.size());
+    const size_t row = static_cast<size_t>(w) * kChannels;
+    for (size_t c = 0; c < static_cast<size_t>(charts); ++c)
+        for (size_t j = 0; j < static_cast<size_t>(h); ++j)
+            std::copy_n(level.begin() + static_cast<std::ptrdiff_t>((c * h + j) * row), row,
+                        px.begin() + static_cast<std::ptrdiff_t>((j * charts + c) * row));
+    return px;
+}
+
+// The inverse: an image of `charts` w x h charts side by side as a face-major level.
+std::vector<float> ChartsOfImage(const std::vector<float>& px, int charts, int w, int h) {
+    std::vector<float> level(px.size());
+    const size_t row = static_cast<size_t>(w) * kChannels;
+    for (size_t c = 0; c < static_cast<size_t>(charts); ++c)
+        for (size_t j = 0; j < static_cast<size_t>(h); ++j)
+            std::copy_n(px.begin() + static_cast<std::ptrdiff_t>((j * charts + c) * row), row,
+                        level.begin() + static_cast<std::ptrdiff_t>((c * h + j) * row));
+    return level;
+}
+
 // The interleaved RGBA image of EXR level l (w x h).
 std::vector<float> LevelImage(const EnvMapF& map, int l, int w, int h,
                               const std::array<float, kChannels>& fill) {
@@ -105,7 +129,8 @@ std::vector<float> LevelImage(const EnvMapF& map, int l, int w, int h,
         return px;
     }
     const std::vector<float>& level = map.levels[static_cast<size_t>(l)];
-    if (!map.IsCube()) return level;  // a 2D level is the EXR level, rows top-down
+    if (!map.IsCube() && map.charts == 1) return level;  // the EXR level, rows top-down
+    if (!map.IsCube()) return ChartsSideBySide(level, map.charts, map.LevelSize(l), h);
     const int n = map.LevelSize(l);
     for (int f = 0; f < 6; ++f)
         for (int j = 0; j < n; ++j)
@@ -150,6 +175,10 @@ void CheckWritable(const EnvMapF& map) {
             "WriteEnvMapExr: width and height must be powers of two with >= 1 level");
     const int chain =
         map.IsCube() ? ChainLevels(map.size, map.size) : ChainLevels(map.size, map.LevelHeight(0));
+    if (!map.IsCube() &&
+        (map.charts < 1 || map.charts > 2 || (map.charts > 1 && map.LevelHeight(0) > map.size)))
+        throw std::invalid_argument(
+            "WriteEnvMapExr: a 2D map has 1 or 2 charts, no taller than wide");
     if (map.NumLevels() > chain)
         throw std::invalid_argument("WriteEnvMapExr: more levels than the MIP chain has");
     for (int l = 0; l < map.NumLevels(); ++l)
@@ -158,8 +187,10 @@ void CheckWritable(const EnvMapF& map) {
 }
 
 void WriteExr(const EnvMapF& map, const std::string& path, int threads) {
-    // Header: N x 6N (a cube envmap) or W x H, float RGBA, tiled with every ROUND_DOWN MIP level.
-    Imf::Header header(map.size, map.IsCube() ? 6 * map.size : map.LevelHeight(0));
+    // Header: N x 6N (a cube envmap) or (charts W) x H, float RGBA, tiled with every ROUND_DOWN
+    // MIP level.
+    Imf::Header header(map.IsCube() ? map.size : map.charts * map.size,
+                       map.IsCube() ? 6 * map.size : map.LevelHeight(0));
     for (const char* name : kChannelNames) header.channels().insert(name, Imf::Channel(Imf::FLOAT));
     header.setTileDescription(
         Imf::TileDescription(kTileSize, kTileSize, Imf::MIPMAP_LEVELS, Imf::ROUND_DOWN));
@@ -167,6 +198,8 @@ void WriteExr(const EnvMapF& map, const std::string& path, int threads) {
     header.zipCompressionLevel() = 1;
     if (map.IsCube()) Imf::addEnvmap(header, Imf::ENVMAP_CUBE);
     header.insert(kLevelsAttribute, Imf::IntAttribute(map.NumLevels()));
+    if (!map.IsCube() && map.charts > 1)
+        header.insert(kChartsAttribute, Imf::IntAttribute(map.charts));
     if (threads > 1 && Imf::globalThreadCount() < threads) Imf::setGlobalThreadCount(threads);
     Imf::TiledOutputFile out(path.c_str(), header, threads > 1 ? threads : 0);
     // Every level, the degenerate tail included.
@@ -254,19 +287,31 @@ EnvMapF ReadEnvMapExr(const std::string& path) {
     if (!cube && (!IsPowerOfTwo(w) || !IsPowerOfTwo(h)))
         throw std::runtime_error(path + ": data window is not W x H with powers of two");
     if (in.levelMode() != Imf::MIPMAP_LEVELS) throw std::runtime_error(path + ": not mip-mapped");
-    int levels = cube ? ChainLevels(w, w) : ChainLevels(w, h);  // the texture's MIP chain
+    // A 2D map of two charts (textures) stores them side by side.
+    int charts = 1;
+    if (const auto* attr = header.findTypedAttribute<Imf::IntAttribute>(kChartsAttribute))
+        charts = attr->value();
+    if (charts != 1 && (cube || charts != 2 || w < 2))
+        throw std::runtime_error(path + ": " + kChartsAttribute + " " + std::to_string(charts) +
+                                 " (a 2D map has 1 or 2)");
+    const int cw = w / charts;                                   // a chart's width
+    int levels = cube ? ChainLevels(w, w) : ChainLevels(cw, h);  // the texture's MIP chain
     if (const auto* attr = header.findTypedAttribute<Imf::IntAttribute>(kLevelsAttribute))
         levels = std::min(levels, attr->value());
     if (levels < 1 || levels > in.numLevels()) throw std::runtime_error(path + ": missing levels");
     // Read each level (a cube's with its face layout undone).
     EnvMapF map;
     map.kind = cube ? raster::TextureKind::Cube : raster::TextureKind::Tex2D;
-    map.size = w;
+    map.size = cw;
     map.height = cube ? w : h;
+    map.charts = charts;
     for (int l = 0; l < levels; ++l) {
         int lw = 0;
         std::vector<float> px = ReadLevelPixels(in, l, &lw);
-        map.levels.push_back(cube ? CubeLevel(px, lw, map.LevelSize(l)) : std::move(px));
+        map.levels.push_back(cube ? CubeLevel(px, lw, map.LevelSize(l))
+                             : charts > 1
+                                 ? ChartsOfImage(px, charts, map.LevelSize(l), map.LevelHeight(l))
+                                 : std::move(px));
     }
     return map;
 }

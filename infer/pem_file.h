@@ -4,7 +4,10 @@
 // (the lat-long, sphere, paraboloid and tennis layouts of runtime/parameterization.h) as a plain
 // W x H image whose level l is the texture's level l, texel (i, j) at column i, row j from the
 // top, without an envmap attribute (OpenEXR's lat-long convention is not GL's texgen's; which
-// layout a 2D map is, is the PEM directory's manifest.json's to say).
+// layout a 2D map is, is the PEM directory's manifest.json's to say). A map of two charts (the
+// paraboloid's and the tennis ball's two textures) is one image of both side by side, level by
+// level (chart c at columns [c w_l, (c + 1) w_l)), with the attribute "pemrefCharts" = 2; the
+// chain of the wider image has one level more than the charts' (their mean, like a cube's tail).
 //
 // Cubes (docs/deps.md §5): level 0 is N wide by 6N tall, the faces stacked top to bottom in the
 // order +X, -X, +Y, -Y, +Z, -Z, each face oriented as ImfEnvmap.h draws it. A texel keeps its

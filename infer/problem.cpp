@@ -62,7 +62,8 @@ ImageBlock SelectImageRows(const raster::RenderingMatrix& a, const Vector& known
                 const uint32_t c = a.col[static_cast<size_t>(k)];
                 const double v = a.val[static_cast<size_t>(k)];
                 if (c >= colBegin && c < colEnd) {
-                    cols.push_back(static_cast<uint32_t>(c - colBegin));
+                    const auto rel = static_cast<uint32_t>(c - colBegin);
+                    cols.push_back(4u * layout.LocalOfFrameOrder(rel / 4u) + rel % 4u);
                     vals.push_back(v);
                 } else {
                     constant += v * known[c];
@@ -175,7 +176,13 @@ LinearSystem BuildSystem(const raster::RenderingMatrix& a, const raster::Frame& 
 
     // Image block: kept rows, local columns, weighted by sqrt(confidence).
     LinearSystem sys;
-    sys.layout = LayoutOfTexture(tex);
+    sys.layout = LayoutOfTexture(tex, 0, options.charts);
+    for (int c = 1; c < sys.layout.charts; ++c)
+        if (!(frame.textures.at(static_cast<size_t>(texture + c)).width == tex.width &&
+              frame.textures.at(static_cast<size_t>(texture + c)).height == tex.height &&
+              frame.textures.at(static_cast<size_t>(texture + c)).levels.size() ==
+                  tex.levels.size()))
+            throw std::invalid_argument("BuildSystem: a map's chart textures differ in shape");
     sys.globalFirstTexel = raster::TexelIndexer(frame.textures).LevelBase(texture, 0);
     ImageBlock img =
         SelectImageRows(a, TexelVector(frame), sys.layout, sys.globalFirstTexel, target);
@@ -259,7 +266,9 @@ Vector TexelVector(const raster::Frame& frame) {
 Vector ExpandSolution(const LinearSystem& system, const raster::Frame& frame, const Vector& x) {
     Vector full = TexelVector(frame);
     const size_t base = size_t{kChannels} * system.globalFirstTexel;
-    for (size_t j = 0; j < x.size(); ++j) full[base + j] = x[j];
+    for (size_t j = 0; j < x.size(); ++j)
+        full[base + 4 * size_t{system.layout.FrameOrderOfLocal(static_cast<uint32_t>(j / 4))} +
+             j % 4] = x[j];
     return full;
 }
 

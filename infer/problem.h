@@ -51,6 +51,9 @@ struct SystemOptions {
     // regularizer rows that touch a texel outside the set are dropped, and FillUnobserved
     // completes the map afterwards.
     int activeRings = -1;
+    // 2D textures of the map: 2 for a two-image layout (textures `texture` and `texture` + 1,
+    // equal shapes; regularizer.h numbers them as the map's faces), else 1.
+    int charts = 1;
 };
 
 struct LinearSystem {

@@ -155,8 +155,38 @@ uint32_t TexelLayout::NeighbourTexel(int level, const FaceTexel& t, Edge e) cons
     return Texel(level, t.face, i, j);
 }
 
-TexelLayout LayoutOfTexture(const raster::Texture& texture, uint32_t firstTexel) {
+uint32_t TexelLayout::LocalOfFrameOrder(uint32_t r) const {
+    if (Faces() == 1 || kind == raster::TextureKind::Cube) return r;
+    // Step: the chart and the offset inside its texture (all levels of one chart).
+    const uint32_t perChart = LevelBase(levels) / static_cast<uint32_t>(charts);
+    const uint32_t chart = r / perChart;
+    uint32_t rest = r % perChart;
+    // Step: the level, then the texel's place among that level's charts.
+    for (int l = 0;; ++l) {
+        const auto n = static_cast<uint32_t>(LevelSize(l) * LevelHeight(l));
+        if (rest < n || l + 1 == levels) return LevelBase(l) + chart * n + rest;
+        rest -= n;
+    }
+}
+
+uint32_t TexelLayout::FrameOrderOfLocal(uint32_t t) const {
+    if (Faces() == 1 || kind == raster::TextureKind::Cube) return t;
+    const uint32_t perChart = LevelBase(levels) / static_cast<uint32_t>(charts);
+    // Step: the level, then the chart and the offset inside that chart's level image.
+    uint32_t before = 0;  // texels of one chart in the finer levels
+    for (int l = 0;; ++l) {
+        const auto n = static_cast<uint32_t>(LevelSize(l) * LevelHeight(l));
+        if (t < LevelBase(l + 1) || l + 1 == levels) {
+            const uint32_t o = t - LevelBase(l);
+            return (o / n) * perChart + before + o % n;
+        }
+        before += n;
+    }
+}
+
+TexelLayout LayoutOfTexture(const raster::Texture& texture, uint32_t firstTexel, int charts) {
     TexelLayout l;
+    l.charts = texture.kind == raster::TextureKind::Tex2D ? charts : 1;
     l.firstTexel = firstTexel;
     l.size = texture.width;
     l.levels = texture.NumLevels();

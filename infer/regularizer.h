@@ -20,7 +20,11 @@
 // Texel numbering (TexelLayout) is local to the unknown texture: texel (level, face, i, j) is
 // firstTexel + LevelBase(level) + (face * h_l + j) * w_l + i, the raster/texel_index.h layout.
 // 2D textures: neighbours within each level's w_l x h_l grid (around s when it repeats), the
-// pyramid's children 4, 2 or 1 as the level halves both sizes, one or neither.
+// pyramid's children 4, 2 or 1 as the level halves both sizes, one or neither. A map of two
+// equal 2D textures (the two-image layouts: consecutive textures of the frame) is one layout
+// whose charts are its faces, numbered level by level as a cube's faces are (no neighbours
+// across charts); raster numbers them texture by texture, so the unknowns' order differs from
+// the frame's by the permutation LocalOfFrameOrder / FrameOrderOfLocal.
 // Not here: weights per texel, the prior's value (problem.h).
 #pragma once
 
@@ -55,8 +59,9 @@ struct TexelLayout {
     raster::TextureKind kind = raster::TextureKind::Cube;
     int height = 0;      // a 2D texture's level-0 height (a power of two); cubes: size
     bool wrapS = false;  // 2D: GL_REPEAT along s (columns 0 and w - 1 are neighbours)
+    int charts = 1;      // 2D: textures of the map (2 for the two-image layouts), as faces
 
-    int Faces() const { return kind == raster::TextureKind::Cube ? 6 : 1; }
+    int Faces() const { return kind == raster::TextureKind::Cube ? 6 : charts; }
     int LevelSize(int level) const { return std::max(1, size >> level); }  // level width
     int LevelHeight(int level) const {
         return std::max(1, (kind == raster::TextureKind::Cube ? size : height) >> level);
@@ -72,10 +77,16 @@ struct TexelLayout {
     // Texel index of t's neighbour in direction e: across cube seams by the sampler's adjacency;
     // in a 2D texture within the level (around s when wrapS), else t itself (no neighbour).
     uint32_t NeighbourTexel(int level, const FaceTexel& t, Edge e) const;
+    // A texel's offset from firstTexel in raster's order (texture by texture, texel_index.h) to
+    // the layout's (level by level), and back: the identity unless charts > 1.
+    uint32_t LocalOfFrameOrder(uint32_t r) const;
+    uint32_t FrameOrderOfLocal(uint32_t t) const;
 };
 
-// The layout of one texture of a frame (its kind, size, levels and wrap along s).
-TexelLayout LayoutOfTexture(const raster::Texture& texture, uint32_t firstTexel = 0);
+// The layout of one texture of a frame (its kind, size, levels and wrap along s), or of
+// `charts` consecutive equal 2D textures starting with it.
+TexelLayout LayoutOfTexture(const raster::Texture& texture, uint32_t firstTexel = 0,
+                            int charts = 1);
 
 // Every undirected neighbour pair of one level, as (smaller, larger) texel indices of `layout`,
 // sorted. Each texel of a cube surface grid has exactly 4 neighbours, so there are 12 n^2 pairs

@@ -56,7 +56,7 @@ double Since(Clock::time_point t0) {
 
 void WriteMapFiles(const infer::EnvMapF& map, const raster::SamplerState& sampler,
                    const infer::SolveResult& res, const std::string& stem, int threads) {
-    WriteMapImages(map, infer::ToTexture8(map, sampler), stem, threads);
+    WriteMapImages(map, infer::ToTextures8(map, sampler), stem, threads);
     infer::WriteLogCsv(res.log, stem + ".csv");
 }
 
@@ -90,8 +90,8 @@ void ExportSystem(const std::string& exportDir, const MapReport& rep,
 struct MapInput {
     const trace::FloatImage* layer = nullptr;     // RGBA premultiplied layer image
     const trace::FloatImage* coverage = nullptr;  // alpha = lens coverage
-    raster::Pass pass;
-    std::optional<raster::Pass> depthPass;  // drawn before `pass`: depth only (DepthOnlyPass)
+    std::vector<raster::Pass> passes;             // the layer's, one per texture of the map
+    std::optional<raster::Pass> depthPass;  // drawn before `passes`: depth only (DepthOnlyPass)
     double weight = 1.0;                    // the rows' weight (times the coverage)
     bool own = true;                        // the sample's own view (counts in rmse_8bit)
 };
@@ -122,12 +122,13 @@ raster::Frame UnknownFrame(int width, int height, int res, const raster::Sampler
         for (int l = 0; (res >> l) >= 1; ++l)
             tex.levels.emplace_back(static_cast<size_t>(6 * (res >> l) * (res >> l) * 4), 0);
         frame.textures.push_back(std::move(tex));
-    } else {
-        frame.textures.push_back(
-            runtime::EmptyTexture(runtime::LayoutOf(parameterization, res), sampler));
+    } else {  // one texture per chart
+        const runtime::MapLayout layout = runtime::LayoutOf(parameterization, res);
+        frame.textures.assign(static_cast<size_t>(layout.textures),
+                              runtime::EmptyTexture(layout, sampler));
     }
     if (in.depthPass) frame.passes.push_back(*in.depthPass);
-    frame.passes.push_back(in.pass);
+    frame.passes.insert(frame.passes.end(), in.passes.begin(), in.passes.end());
     return frame;
 }
 
@@ -259,9 +260,13 @@ std::vector<double> LevelsAccessed(const std::vector<MapInput>& inputs, int w, i
             if (first == last) continue;
             const uint32_t finest =  // levels are numbered finest first
                 *std::min_element(a.col.begin() + first, a.col.begin() + last) / 4;
+            int chart = 0;  // the texture of the map it reads (a two-image layout has two)
+            while (chart + 1 < static_cast<int>(f.textures.size()) &&
+                   index.LevelBase(chart + 1, 0) <= finest)
+                ++chart;
             size_t level = 0;
             while (level + 1 < share.size() &&
-                   index.LevelBase(0, static_cast<int>(level) + 1) <= finest)
+                   index.LevelBase(chart, static_cast<int>(level) + 1) <= finest)
                 ++level;
             share[level] += 1.0;
             total += 1.0;
@@ -291,13 +296,13 @@ int ResolutionAccessed(const std::vector<double>& share, int minRes, int maxRes)
 // subpixel by subpixel: the error the hardware shows.
 double Rmse8(const infer::EnvMapF& m, const StackedRows& s, const infer::LinearSystem& sys,
              const std::string& profile, int threads) {
-    const raster::Texture tex8 = infer::ToTexture8(m, s.frame.textures[0].sampler);
+    const std::vector<raster::Texture> tex8 = infer::ToTextures8(m, s.frame.textures[0].sampler);
     raster::RenderOptions fo = raster::ProfileNamed(profile).options;
     fo.threads = threads;
     double sum = 0.0, weight = 0.0;
     for (const OwnRows& own : s.own) {
         raster::Frame f8 = own.frame;
-        f8.textures[0] = tex8;
+        std::copy(tex8.begin(), tex8.end(), f8.textures.begin());
         const raster::RenderResult rr = raster::Render(raster::PreparedFrame(f8), fo);
         const int64_t last = own.first + 4 * static_cast<int64_t>(own.cells.size());
         for (int64_t r : sys.imageRowOf) {
@@ -332,8 +337,10 @@ MapReport SolveMap(const std::vector<MapInput>& inputs, const InferJobOptions& o
     }
     const StackedRows s = StackRows(inputs, tm.width, tm.height, tm.spp, rep.res, opt);
     rep.matrixSeconds = Since(t0);
+    infer::SystemOptions systemOptions = opt.system;  // the map's textures: its charts
+    systemOptions.charts = runtime::LayoutOf(opt.parameterization, 2).textures;
     const infer::LinearSystem sys =
-        infer::BuildSystem(s.a, s.frame, 0, s.target, opt.weights, opt.system);
+        infer::BuildSystem(s.a, s.frame, 0, s.target, opt.weights, systemOptions);
     rep.buildSeconds = Since(t0);
     rep.rows = sys.k.Rows(), rep.cols = sys.Cols(), rep.nnz = sys.k.A().NonZeros();
     rep.observedTexels = static_cast<int64_t>(sys.active.size());
@@ -470,9 +477,9 @@ std::vector<MapInput> Observations(const InferJobOptions& opt, const std::vector
                         {},
                         vg.weight,
                         vg.view == v};
-            in.pass = runtime::LayerPass(runtime::MeshOf(vg.lp.tess), vg.order,
-                                         runtime::ShellCoords(vg.exits[term], shell, emOrigin),
-                                         vg.exits[term], vg.vp, DepthTested(opt, vg.camera));
+            in.passes = runtime::LayerPass(runtime::MeshOf(vg.lp.tess), vg.order,
+                                           runtime::ShellCoords(vg.exits[term], shell, emOrigin),
+                                           vg.exits[term], vg.vp, DepthTested(opt, vg.camera));
             inputs.push_back(std::move(in));
         }
     return inputs;
@@ -550,9 +557,9 @@ void SolvePemMaps(Context& c, int v, const runtime::LensGroupEm& g, const std::s
             in.depthPass = runtime::DepthOnlyPass(m.Pass(), m.order, m.viewProjection);
             po.depthTest = runtime::LayerDepthTest(false);
         }
-        in.pass = runtime::LayerPass(m.Pass(), which == 0 ? offHull : m.order,
-                                     runtime::ShellCoords(m.exits, shell, g.emOrigin), m.exits,
-                                     m.viewProjection, po);
+        in.passes = runtime::LayerPass(m.Pass(), which == 0 ? offHull : m.order,
+                                       runtime::ShellCoords(m.exits, shell, g.emOrigin), m.exits,
+                                       m.viewProjection, po);
         Solve(c, {in}, odir, Report(v, g, which, "pem", which == 0 ? "pem_local" : "pem_distant"));
     }
 }

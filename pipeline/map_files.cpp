@@ -9,36 +9,41 @@
 
 namespace pem::pipeline {
 
-void WriteTexturePng(const raster::Texture& texture, const std::string& path) {
-    // A cube's levels as rows of six faces, a 2D texture's levels stacked, left-aligned.
-    const int faces = texture.kind == raster::TextureKind::Cube ? 6 : 1;
+void WriteTexturePng(std::span<const raster::Texture> textures, const std::string& path) {
+    // Each level a row of every texture's faces (a cube's six, a two-image map's two charts),
+    // the levels stacked, left-aligned.
+    const raster::Texture& first = textures.front();
+    const int faces = first.Faces() * static_cast<int>(textures.size());
     int height = 0;
-    for (int l = 0; l < texture.NumLevels(); ++l) height += texture.LevelHeight(l);
-    base::Image8 img{faces * texture.width, height, {}};
+    for (int l = 0; l < first.NumLevels(); ++l) height += first.LevelHeight(l);
+    base::Image8 img{faces * first.width, height, {}};
     img.rgba.assign(static_cast<size_t>(img.width) * static_cast<size_t>(img.height) * 4, 0);
     int y0 = 0;
-    for (int l = 0; l < texture.NumLevels(); ++l) {
-        const size_t w = static_cast<size_t>(texture.LevelWidth(l));
-        const size_t h = static_cast<size_t>(texture.LevelHeight(l));
-        const std::vector<uint8_t>& level = texture.levels[static_cast<size_t>(l)];
-        for (size_t f = 0; f < static_cast<size_t>(faces); ++f)
-            for (size_t j = 0; j < h; ++j)
-                std::copy_n(level.begin() + static_cast<std::ptrdiff_t>(((f * h + j) * w) * 4),
-                            w * 4,
-                            img.rgba.begin() +
-                                static_cast<std::ptrdiff_t>(((static_cast<size_t>(y0) + j) *
-                                                                 static_cast<size_t>(img.width) +
-                                                             f * w) *
-                                                            4));
+    for (int l = 0; l < first.NumLevels(); ++l) {
+        const size_t w = static_cast<size_t>(first.LevelWidth(l));
+        const size_t h = static_cast<size_t>(first.LevelHeight(l));
+        size_t column = 0;  // the face's place in the row
+        for (const raster::Texture& texture : textures) {
+            const std::vector<uint8_t>& level = texture.levels[static_cast<size_t>(l)];
+            for (size_t f = 0; f < static_cast<size_t>(texture.Faces()); ++f, ++column)
+                for (size_t j = 0; j < h; ++j)
+                    std::copy_n(
+                        level.begin() + static_cast<std::ptrdiff_t>(((f * h + j) * w) * 4), w * 4,
+                        img.rgba.begin() +
+                            static_cast<std::ptrdiff_t>(
+                                ((static_cast<size_t>(y0) + j) * static_cast<size_t>(img.width) +
+                                 column * w) *
+                                4));
+        }
         y0 += static_cast<int>(h);
     }
     base::WritePng(path, img);
 }
 
-void WriteMapImages(const infer::EnvMapF& map, const raster::Texture& texture,
+void WriteMapImages(const infer::EnvMapF& map, std::span<const raster::Texture> textures,
                     const std::string& stem, int threads) {
     infer::WriteEnvMapExr(map, stem + ".exr", threads);
-    WriteTexturePng(texture, stem + ".png");
+    WriteTexturePng(textures, stem + ".png");
 }
 
 }  // namespace pem::pipeline

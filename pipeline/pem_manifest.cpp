@@ -147,22 +147,25 @@ void CheckMapSize(const PemManifest& m, int size, const std::string& path) {
 }
 
 void CheckMapShape(const PemManifest& m, raster::TextureKind kind, int width, int height,
-                   const std::string& path) {
-    // The layout's size parameter is a 2D map's height (runtime/parameterization.h LayoutOf).
+                   int charts, const std::string& path) {
     const bool cube = m.parameterization == runtime::Parameterization::Cube;
-    const int size = cube ? width : height;
     const std::string name(runtime::ParameterizationName(m.parameterization));
     if (cube != (kind == raster::TextureKind::Cube))
         throw base::InputError(
             path, std::string(cube ? "a 2D map" : "a cube map") + ", the manifest says " + name);
-    CheckMapSize(m, size, path);
-    if (cube) return;
-    const runtime::MapLayout layout = runtime::LayoutOf(m.parameterization, size);
-    if (layout.width != width || layout.height != height)
-        throw base::InputError(
-            path, std::to_string(width) + " x " + std::to_string(height) + " is not a " + name +
-                      " map of size " + std::to_string(size) + " (" + std::to_string(layout.width) +
-                      " x " + std::to_string(layout.height) + ")");
+    if (cube) return CheckMapSize(m, width, path);
+    // Step: the layout's size (a power of two in [res, max_res]) whose textures have this shape.
+    for (int size = std::max(2, m.res); size <= m.maxRes; size *= 2) {
+        const runtime::MapLayout layout = runtime::LayoutOf(m.parameterization, size);
+        if (layout.width == width && layout.height == height && layout.textures == charts) return;
+    }
+    const runtime::MapLayout smallest = runtime::LayoutOf(m.parameterization, std::max(2, m.res));
+    throw base::InputError(
+        path, std::to_string(charts) + " x " + std::to_string(width) + " x " +
+                  std::to_string(height) + " is not a " + name + " map of the manifest's sizes (" +
+                  std::to_string(smallest.textures) + " x " + std::to_string(smallest.width) +
+                  " x " + std::to_string(smallest.height) + " at size " +
+                  std::to_string(std::max(2, m.res)) + ")");
 }
 
 std::string PemManifestText(const PemManifest& m) {

@@ -237,8 +237,8 @@ PackStats PackPem(const std::string& pemDir, const std::string& packFile, const 
                 const std::string path = MapPath(pemDir, v, g, name);
                 CheckInside(pemDir, path);
                 const infer::EnvMapF map = infer::ReadEnvMapExr(path);
-                CheckMapShape(m, map.kind, map.size, map.LevelHeight(0), path);
-                const raster::Texture tex = infer::ToTexture8(map, sampler);
+                CheckMapShape(m, map.kind, map.size, map.LevelHeight(0), map.charts, path);
+                const raster::Texture tex = infer::ToTextures8(map, sampler).front();  // a cube
                 auto prev = last.find({g, name});
                 const raster::Texture* previous =
                     prev == last.end() ? nullptr : &prev->second.second;
@@ -375,7 +375,8 @@ void UnpackPem(const std::string& packFile, const std::string& outDir, int threa
         for (const auto& [key, tex] : p.maps) {
             const auto& [view, group, name] = key;
             fs::create_directories(GroupDir(tmp, view, group));
-            WriteMapImages(infer::FromTexture8(tex), tex, MapStem(tmp, view, group, name), threads);
+            WriteMapImages(infer::FromTextures8({&tex, 1}), {&tex, 1},
+                           MapStem(tmp, view, group, name), threads);
         }
         // Step 2: the directory appears whole.
         fs::rename(tmp, outDir);

@@ -2,10 +2,12 @@
 // pem_set.cpp — PEM directories for drawing (pem_set.h).
 #include "pipeline/pem_set.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <map>
+#include <vector>
 
 #include "base/input_error.h"
 #include "infer/env_map.h"
@@ -26,17 +28,18 @@ class MapCache {
         const std::string path = MapPath(manifest_.dir, view, group, name);
         auto it = cache_.find(path);
         if (it == cache_.end()) {
-            std::unique_ptr<raster::Texture> tex;
-            if (std::filesystem::exists(path)) tex = std::make_unique<raster::Texture>(Load(path));
+            std::unique_ptr<std::vector<raster::Texture>> tex;
+            if (std::filesystem::exists(path))
+                tex = std::make_unique<std::vector<raster::Texture>>(Load(path));
             it = cache_.emplace(path, std::move(tex)).first;
         }
-        return it->second.get();
+        return it->second ? it->second->data() : nullptr;
     }
 
   private:
-    // The map's 8-bit copy: inside the directory, a readable cube map of a size the manifest
-    // allows (a power of two in [res, max_res]).
-    raster::Texture Load(const std::string& path) const {
+    // The map's 8-bit copy (one texture per chart): inside the directory, a readable map of the
+    // manifest's layout at a size it allows (a power of two in [res, max_res]).
+    std::vector<raster::Texture> Load(const std::string& path) const {
         CheckInside(manifest_.dir, path);
         infer::EnvMapF map;
         try {
@@ -46,17 +49,18 @@ class MapCache {
         } catch (const std::exception& e) {
             throw base::InputError(path, std::string("cannot read the map: ") + e.what());
         }
-        CheckMapShape(manifest_, map.kind, map.size, map.LevelHeight(0), path);
-        if (map.IsCube()) return infer::ToTexture8(map, sampler_);
+        CheckMapShape(manifest_, map.kind, map.size, map.LevelHeight(0), map.charts, path);
+        if (map.IsCube()) return infer::ToTextures8(map, sampler_);
         // A 2D layout: the hardware's filters with the layout's wrap modes.
-        return infer::ToTexture8(
-            map, runtime::LayoutSampler(runtime::LayoutOf(manifest_.parameterization, map.height),
-                                        sampler_));
+        return infer::ToTextures8(
+            map, runtime::LayoutSampler(
+                     runtime::LayoutOf(manifest_.parameterization, std::max(2, manifest_.res)),
+                     sampler_));
     }
 
     PemManifest manifest_;
     raster::SamplerState sampler_;
-    std::map<std::string, std::unique_ptr<raster::Texture>> cache_;
+    std::map<std::string, std::unique_ptr<std::vector<raster::Texture>>> cache_;
 };
 
 }  // namespace

@@ -6,7 +6,7 @@
 //   runtime::RenderedFrame f = r->Render(r->SampleCamera(0), {});
 //
 // Maps: view_v/group_g/<name>.exr (layout.h), read as float and converted to the hardware's
-// 8-bit copy (infer/env_map.h ToTexture8) with the manifest's sampler (trilinear, seamless) and,
+// 8-bit copy (infer/env_map.h ToTextures8) with the manifest's sampler (trilinear, seamless) and,
 // for a 2D layout (manifest "parameterization"), the layout's wrap modes; a map of another
 // layout's shape is refused.
 // The scene is found relative to the PEM directory first (pem_manifest.h), so a directory can

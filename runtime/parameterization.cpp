@@ -63,14 +63,13 @@ glm::dvec2 ParaboloidCoord(const glm::dvec3& d, int chart) {
     const double den = chart == 0 ? 1.0 + d.z : 1.0 - d.z;
     if (!(den > 0.0)) return {chart == 0 ? 0.5 : 1.0, 0.5};
     const double s = Clamp01(0.5 * d.x / den + 0.5), t = Clamp01(0.5 * d.y / den + 0.5);
-    return {(chart + s) / 2.0, t};
+    return {s, t};
 }
 
 glm::dvec2 TennisCoord(const glm::dvec3& d, int band) {
-    if (d == glm::dvec3(0.0)) return {0.5, (band + 0.5) / 2.0};
+    if (d == glm::dvec3(0.0)) return {0.5, 0.5};
     const glm::dvec2 a = TennisAngles(d, band);
-    const double s = Clamp01(a.y / (1.5 * kPi) + 0.5), t = Clamp01(a.x / (0.5 * kPi) + 0.5);
-    return {s, (band + t) / 2.0};
+    return {Clamp01(a.y / (1.5 * kPi) + 0.5), Clamp01(a.x / (0.5 * kPi) + 0.5)};
 }
 
 }  // namespace
@@ -88,7 +87,8 @@ std::optional<Parameterization> ParseParameterization(std::string_view name) {
 }
 
 int64_t MapLayout::Texels() const {
-    return static_cast<int64_t>(width) * height * (kind == raster::TextureKind::Cube ? 6 : 1);
+    return static_cast<int64_t>(width) * height * (kind == raster::TextureKind::Cube ? 6 : 1) *
+           textures;
 }
 
 MapLayout LayoutOf(Parameterization p, int size) {
@@ -98,12 +98,12 @@ MapLayout LayoutOf(Parameterization p, int size) {
     MapLayout l;
     l.parameterization = p;
     l.kind = p == Parameterization::Cube ? raster::TextureKind::Cube : raster::TextureKind::Tex2D;
-    l.width = p == Parameterization::Cube || p == Parameterization::Sphere ? size : 2 * size;
-    l.height = size;
+    const bool twoImages = p == Parameterization::Paraboloid || p == Parameterization::Tennis;
+    l.width = p == Parameterization::LatLong || p == Parameterization::Tennis ? 2 * size : size;
+    l.height = p == Parameterization::Tennis ? size / 2 : size;
     if (p == Parameterization::LatLong) l.wrapS = raster::Wrap::Repeat;
-    l.charts = p == Parameterization::Cube                                          ? 6
-               : p == Parameterization::Paraboloid || p == Parameterization::Tennis ? 2
-                                                                                    : 1;
+    l.charts = p == Parameterization::Cube ? 6 : twoImages ? 2 : 1;
+    l.textures = twoImages ? 2 : 1;
     return l;
 }
 
@@ -124,14 +124,7 @@ raster::Texture EmptyTexture(const MapLayout& layout, const raster::SamplerState
     return t;
 }
 
-int ChartAt(Parameterization p, const glm::dvec2& st) {
-    if (p == Parameterization::Paraboloid) return st.x >= 0.5 ? 1 : 0;
-    if (p == Parameterization::Tennis) return st.y >= 0.5 ? 1 : 0;
-    return 0;
-}
-
-glm::dvec3 LayoutDirection(Parameterization p, const glm::dvec2& st) {
-    const int chart = ChartAt(p, st);
+glm::dvec3 LayoutDirection(Parameterization p, int chart, const glm::dvec2& st) {
     switch (p) {
         case Parameterization::LatLong: {
             const double phi = (st.x - 0.5) * 2.0 * kPi, theta = st.y * kPi;  // from +Y
@@ -147,13 +140,13 @@ glm::dvec3 LayoutDirection(Parameterization p, const glm::dvec2& st) {
         }
         case Parameterization::Paraboloid: {
             // (u, v) = (x, y) / (1 ± z) solved for a unit direction: |z| = (1 - q) / (1 + q).
-            const double u = 2.0 * (2.0 * st.x - chart) - 1.0, v = 2.0 * st.y - 1.0;
+            const double u = 2.0 * st.x - 1.0, v = 2.0 * st.y - 1.0;
             const double q = u * u + v * v, a = (1.0 - q) / (1.0 + q);
             return {u * (1.0 + a), v * (1.0 + a), chart == 0 ? a : -a};
         }
         case Parameterization::Tennis: {
             const double phi = (st.x - 0.5) * 1.5 * kPi;
-            const double theta = (2.0 * st.y - chart - 0.5) * 0.5 * kPi;
+            const double theta = (st.y - 0.5) * 0.5 * kPi;
             // Band 0: y = sin θ, (x, -z) at angle φ; band 1: x = sin θ, (y, z) at angle φ.
             const double c = std::cos(theta);
             if (chart == 0) return {c * std::sin(phi), std::sin(theta), -c * std::cos(phi)};
@@ -199,17 +192,23 @@ glm::vec2 ChartCoord(Parameterization p, const glm::vec3& dir, int chart,
     return glm::vec2(st);
 }
 
-raster::Pass ToLayout(const raster::Pass& cubePass, int unit, Parameterization p,
-                      const glm::mat3& eyeFromWorld) {
-    if (p == Parameterization::Cube) return cubePass;
-    // Step: the pass's state without its geometry (not copied only to be cleared).
-    raster::Pass out;
-    out.numUnits = cubePass.numUnits;
-    out.texture = cubePass.texture;
-    out.blend = cubePass.blend;
-    out.depthTest = cubePass.depthTest;
+std::vector<raster::Pass> ToLayout(const raster::Pass& cubePass, int unit, Parameterization p,
+                                   const glm::mat3& eyeFromWorld) {
+    if (p == Parameterization::Cube) return {cubePass};
+    // Step: one pass per texture with the pass's state, without its geometry (not copied only
+    // to be cleared).
+    const int textures = LayoutOf(p, 2).textures;
+    std::vector<raster::Pass> out(static_cast<size_t>(textures));
+    for (int c = 0; c < textures; ++c) {
+        raster::Pass& pass = out[static_cast<size_t>(c)];
+        pass.numUnits = cubePass.numUnits;
+        pass.texture = cubePass.texture;
+        pass.texture[static_cast<size_t>(unit)] += c;
+        pass.blend = cubePass.blend;
+        pass.depthTest = cubePass.depthTest;
+    }
     const size_t corners = static_cast<size_t>(cubePass.NumTriangles()) * 3;
-    out.vertices.reserve(corners);
+    if (textures == 1) out[0].vertices.reserve(corners);
     auto corner = [&](size_t k) {
         return cubePass.vertices[cubePass.indices.empty() ? k : cubePass.indices[k]];
     };
@@ -219,12 +218,12 @@ raster::Pass ToLayout(const raster::Pass& cubePass, int unit, Parameterization p
                               corner(k + 1).coord[static_cast<size_t>(unit)] +
                               corner(k + 2).coord[static_cast<size_t>(unit)];
         const int chart = ChartOf(p, sum);
-        // Step: its corners with that chart's coordinates.
+        // Step: its corners with that chart's coordinates, in that chart's pass.
         for (size_t c = 0; c < 3; ++c) {
             raster::Vertex v = corner(k + c);
             glm::vec3& coord = v.coord[static_cast<size_t>(unit)];
             coord = glm::vec3(ChartCoord(p, coord, chart, eyeFromWorld), 0.0f);
-            out.vertices.push_back(v);
+            out[static_cast<size_t>(chart)].vertices.push_back(v);
         }
     }
     return out;

@@ -11,6 +11,7 @@
 #include <chrono>
 #include <cmath>
 #include <map>
+#include <span>
 
 #include "base/input_error.h"
 #include "raster/profile.h"
@@ -130,7 +131,8 @@ class FrameBatch {
           prepared_(prepared),
           stats_(stats) {}
 
-    // A frame drawing maps[k] (innermost first) on geometries[k] with coords[k]: the outermost
+    // A frame drawing maps[k] (innermost first; the first of the map's textures, MapSet::map)
+    // on geometries[k] with coords[k]: the outermost
     // layer replaces, the inner ones go over it. sameAs >= 0: that frame drew the same passes
     // with another sample's maps (they are copied, not filled again).
     int Add(const std::vector<const raster::Texture*>& maps,
@@ -145,20 +147,25 @@ class FrameBatch {
         frame.height = k_ * camera_.height;
         frame.depthClamp = true;
         frame.depth = kLensDepth;
-        frame.passes.resize(maps.size());  // no-op when copied
+        // A map of a two-image layout is two textures and two passes (parameterization.h).
+        const size_t perMap = static_cast<size_t>(LayoutOf(parameterization_, 2).textures);
+        frame.passes.resize(maps.size() * perMap);  // no-op when copied
         for (size_t k = maps.size(); k-- > 0;) {
             const size_t slot = maps.size() - 1 - k;
             PassOptions po;
-            po.texture = static_cast<int>(slot);
+            po.texture = static_cast<int>(slot * perMap);
             po.modulate = true;
             po.blend = slot == 0 ? raster::BlendState::None() : PremultipliedOver();
             po.depthTest = LayerDepthTest(slot == 0);
             po.parameterization = parameterization_;
             po.eyeFromWorld = EyeFromWorld(camera_);
-            frame.textures.push_back(Shape(*maps[k]));
-            frameReady.push_back(Prepared(maps[k]));
+            for (size_t c = 0; c < perMap; ++c) {
+                frame.textures.push_back(Shape(maps[k][c]));
+                frameReady.push_back(Prepared(&maps[k][c]));
+            }
             if (sameAs < 0)
-                FillLayerPass(*geometries[k], coords[k], exits, po, &frame.passes[slot], threads_);
+                FillLayerPass(*geometries[k], coords[k], exits, po,
+                              std::span(frame.passes).subspan(slot * perMap, perMap), threads_);
         }
         stats_->texgenSeconds += Since(t0);
         return static_cast<int>(frames_.size()) - 1;
@@ -271,7 +278,7 @@ struct Renderer::Impl {
     std::vector<trace::Shell> singleShells;  // per group (SingleLayerShell)
     // Static EMs by (group, layout); a sphere map with the eye space it was traced for.
     struct StaticMap {
-        raster::Texture texture;
+        std::vector<raster::Texture> textures;  // one, or two (a two-image layout)
         glm::mat3 eyeFromWorld{1.0f};
     };
     std::map<std::pair<int, Parameterization>, StaticMap> staticMaps;
@@ -309,7 +316,7 @@ struct Renderer::Impl {
                                             : static_cast<double>(maps.hardware.radianceScale);
     }
     std::vector<LayerUse> Uses(const GroupDraw& d, bool pemSplit) const;
-    const raster::Texture& StaticTexture(const GroupDraw& d);
+    const raster::Texture* StaticTexture(const GroupDraw& d);
     void DrawStatic(const GroupDraw& d, const GroupGeometry& gg);
     void DrawMaps(const GroupDraw& d, const GroupGeometry& gg, bool pemSplit);
     void DrawGroup(const GroupDraw& d);
@@ -358,32 +365,35 @@ GroupGeometry Renderer::Impl::Geometry(const GroupDraw& d, bool pemSplit) {
 
 // Static EM: one traced map per group (a cube unless the settings name another layout), looked up
 // with the exit directions; a sphere map is traced again when the eye space changes.
-const raster::Texture& Renderer::Impl::StaticTexture(const GroupDraw& d) {
+const raster::Texture* Renderer::Impl::StaticTexture(const GroupDraw& d) {
     const Parameterization p = d.s.staticLayout;
     const glm::mat3 eyeFromWorld =
         p == Parameterization::Sphere ? EyeFromWorld(d.camera) : glm::mat3(1.0f);
     auto it = staticMaps.find({d.group, p});
     if (it != staticMaps.end() && it->second.eyeFromWorld == eyeFromWorld)
-        return it->second.texture;
-    if (it != staticMaps.end()) prepared.erase(&it->second.texture);  // its address is reused
+        return it->second.textures.data();
+    if (it != staticMaps.end())  // their addresses are reused
+        for (const raster::Texture& t : it->second.textures) prepared.erase(&t);
     const glm::vec3 origin = maps.groups[static_cast<size_t>(d.group)].emOrigin;
     const int size = std::min(maps.res, 128);
-    StaticMap m{p == Parameterization::Cube
-                    ? TraceStaticMap(*tracer, d.group, origin, size, threads)
-                    : TraceStaticMap(*tracer, d.group, origin, LayoutOf(p, std::max(2, size)),
-                                     threads, glm::transpose(eyeFromWorld)),
-                eyeFromWorld};
-    return (staticMaps[{d.group, p}] = std::move(m)).texture;
+    StaticMap m;
+    m.eyeFromWorld = eyeFromWorld;
+    if (p == Parameterization::Cube)
+        m.textures.push_back(TraceStaticMap(*tracer, d.group, origin, size, threads));
+    else
+        m.textures = TraceStaticMap(*tracer, d.group, origin, LayoutOf(p, std::max(2, size)),
+                                    threads, glm::transpose(eyeFromWorld));
+    return (staticMaps[{d.group, p}] = std::move(m)).textures.data();
 }
 
 void Renderer::Impl::DrawStatic(const GroupDraw& d, const GroupGeometry& gg) {
-    const raster::Texture& map = StaticTexture(d);
+    const raster::Texture* map = StaticTexture(d);
     FrameBatch batch(d.camera, d.k, Hardware(d.s), d.s.threads, &prepared, d.stats,
                      d.s.staticLayout);
     for (int term = 0; term < maps.groups[static_cast<size_t>(d.group)].Terms(); ++term) {
         std::vector<glm::vec3> dirs(gg.exits[term].size());
         for (size_t v = 0; v < dirs.size(); ++v) dirs[v] = gg.exits[term][v].dir;
-        batch.Add({&map}, {dirs}, gg.exits[term], 1.0, {&gg.all});
+        batch.Add({map}, {dirs}, gg.exits[term], 1.0, {&gg.all});
     }
     batch.Draw(d.pixels, d.acc, *d.border, d.borderSamples);
 }
@@ -565,15 +575,16 @@ std::vector<std::vector<raster::ImageF>> Renderer::LayerImages(const raster::Cam
             frame.width = sub * camera.width, frame.height = sub * camera.height;
             frame.depthClamp = true;
             frame.depth = kLensDepth;
-            frame.textures.push_back(*map);
-            frame.passes.emplace_back();
+            const int perMap = LayoutOf(m.maps.parameterization, 2).textures;
+            frame.textures.assign(map, map + perMap);
+            frame.passes.resize(static_cast<size_t>(perMap));
             const PassGeometry& geo = pemSplit && uses.size() == 2 && k == 0 ? gg.offHull : gg.all;
             PassOptions po;
             po.depthTest = LayerDepthTest(true);
             po.parameterization = m.maps.parameterization;
             po.eyeFromWorld = EyeFromWorld(camera);
             FillLayerPass(geo, ShellCoords(gg.exits[term], *uses[k].shell, g.emOrigin, s.threads),
-                          gg.exits[term], po, &frame.passes[0], s.threads);
+                          gg.exits[term], po, frame.passes, s.threads);
             const raster::RenderResult rr = raster::Render(raster::PreparedFrame(frame), ro);
             raster::ImageF img = BoxFiltered(rr, camera, sub);
             const auto scale = static_cast<float>(m.RadianceScale(s));

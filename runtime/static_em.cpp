@@ -19,13 +19,14 @@ glm::vec3 FaceDirection(int face, float s, float t) {
     return {d[0], d[1], d[2]};
 }
 
-// The world direction of texel (face, i, j) of an n_w x n_h level 0 of the layout.
+// The world direction of texel (face, i, j) of an n_w x n_h level 0 of the layout (a 2D
+// layout's face: its chart).
 glm::vec3 TexelDirection(const MapLayout& layout, int face, int i, int j,
                          const glm::mat3& worldFromEye) {
     const double s = (i + 0.5) / layout.width, t = (j + 0.5) / layout.height;
     if (layout.kind == raster::TextureKind::Cube)
         return glm::normalize(FaceDirection(face, static_cast<float>(s), static_cast<float>(t)));
-    glm::vec3 d(LayoutDirection(layout.parameterization, {s, t}));
+    glm::vec3 d(LayoutDirection(layout.parameterization, face, {s, t}));
     if (layout.parameterization == Parameterization::Sphere) d = worldFromEye * d;
     return glm::normalize(d);
 }
@@ -34,7 +35,7 @@ glm::vec3 TexelDirection(const MapLayout& layout, int face, int i, int j,
 std::vector<float> TraceLevel0(const trace::Tracer& tracer, int group, const glm::vec3& origin,
                                const MapLayout& layout, const glm::mat3& worldFromEye,
                                int threads) {
-    const int faces = layout.charts == 6 ? 6 : 1, w = layout.width, h = layout.height;
+    const int faces = layout.charts == 6 ? 6 : layout.textures, w = layout.width, h = layout.height;
     std::vector<float> level0(static_cast<size_t>(faces * w * h) * 4, 0.0f);
     base::ParallelFor(faces * h, threads, [&](int row) {
         const int f = row / h, j = row % h;
@@ -76,21 +77,28 @@ std::vector<float> HalveLevel(const std::vector<float>& cur, int faces, int w, i
 
 }  // namespace
 
-raster::Texture TraceStaticMap(const trace::Tracer& tracer, int group, const glm::vec3& origin,
-                               const MapLayout& layout, int threads,
-                               const glm::mat3& worldFromEye) {
-    raster::Texture tex = EmptyTexture(layout, raster::SamplerState{});
-    const int faces = tex.Faces();
-    std::vector<float> cur = TraceLevel0(tracer, group, origin, layout, worldFromEye, threads);
-    for (int l = 0; l < tex.NumLevels(); ++l) {
-        std::vector<uint8_t>& bytes = tex.levels[static_cast<size_t>(l)];
-        for (size_t k = 0; k < cur.size(); ++k)
-            bytes[k] =
-                static_cast<uint8_t>(std::nearbyint(std::clamp(cur[k], 0.0f, 1.0f) * 255.0f));
-        if (l + 1 < tex.NumLevels())
-            cur = HalveLevel(cur, faces, tex.LevelWidth(l), tex.LevelHeight(l));
-    }
-    return tex;
+std::vector<raster::Texture> TraceStaticMap(const trace::Tracer& tracer, int group,
+                                            const glm::vec3& origin, const MapLayout& layout,
+                                            int threads, const glm::mat3& worldFromEye) {
+    // Step: the levels of every face (a cube's 6, a two-image layout's 2 charts), in float.
+    const raster::Texture empty = EmptyTexture(layout, raster::SamplerState{});
+    const int faces = layout.kind == raster::TextureKind::Cube ? 6 : layout.textures;
+    std::vector<std::vector<float>> levels{
+        TraceLevel0(tracer, group, origin, layout, worldFromEye, threads)};
+    for (int l = 0; l + 1 < empty.NumLevels(); ++l)
+        levels.push_back(
+            HalveLevel(levels.back(), faces, empty.LevelWidth(l), empty.LevelHeight(l)));
+    // Step: rounded to 8 bits, each chart of a 2D layout in its own texture.
+    std::vector<raster::Texture> out(static_cast<size_t>(layout.textures), empty);
+    for (size_t c = 0; c < out.size(); ++c)
+        for (int l = 0; l < empty.NumLevels(); ++l) {
+            std::vector<uint8_t>& bytes = out[c].levels[static_cast<size_t>(l)];
+            const std::vector<float>& cur = levels[static_cast<size_t>(l)];
+            for (size_t k = 0; k < bytes.size(); ++k)
+                bytes[k] = static_cast<uint8_t>(
+                    std::nearbyint(std::clamp(cur[c * bytes.size() + k], 0.0f, 1.0f) * 255.0f));
+        }
+    return out;
 }
 
 raster::Texture TraceStaticMap(const trace::Tracer& tracer, int group, const glm::vec3& origin,
@@ -98,7 +106,7 @@ raster::Texture TraceStaticMap(const trace::Tracer& tracer, int group, const glm
     MapLayout cube;  // LayoutOf's, for any power of two (1 included)
     cube.width = cube.height = size;
     cube.charts = 6;
-    return TraceStaticMap(tracer, group, origin, cube, threads);
+    return std::move(TraceStaticMap(tracer, group, origin, cube, threads).front());
 }
 
 }  // namespace pem::runtime

@@ -13,6 +13,7 @@
 #pragma once
 
 #include <glm/glm.hpp>
+#include <vector>
 
 #include "raster/frame.h"
 #include "runtime/parameterization.h"
@@ -23,8 +24,10 @@ namespace pem::runtime {
 raster::Texture TraceStaticMap(const trace::Tracer& tracer, int group, const glm::vec3& origin,
                                int size, int threads);  // a cube of face size `size`
 
-raster::Texture TraceStaticMap(const trace::Tracer& tracer, int group, const glm::vec3& origin,
-                               const MapLayout& layout, int threads,
-                               const glm::mat3& worldFromEye = glm::mat3(1.0f));
+// The map's textures in a layout: one, or two for the two-image layouts (chart 0, chart 1).
+std::vector<raster::Texture> TraceStaticMap(const trace::Tracer& tracer, int group,
+                                            const glm::vec3& origin, const MapLayout& layout,
+                                            int threads,
+                                            const glm::mat3& worldFromEye = glm::mat3(1.0f));
 
 }  // namespace pem::runtime

@@ -7,6 +7,7 @@
 #include <functional>
 #include <limits>
 #include <numeric>
+#include <stdexcept>
 
 #include "base/parallel.h"
 #include "trace/fresnel.h"
@@ -150,12 +151,14 @@ raster::DepthTest LayerDepthTest(bool firstPass) {
                      : raster::DepthTest{raster::DepthFunc::Equal, false};
 }
 
-raster::Pass LayerPass(const PassMesh& mesh, const std::vector<uint32_t>& order,
-                       const std::vector<glm::vec3>& coords, const std::vector<ExitRay>& exits,
-                       const glm::mat4& viewProjection, const PassOptions& options) {
-    raster::Pass pass;
-    FillLayerPass(MakePassGeometry(mesh, order, viewProjection), coords, exits, options, &pass);
-    return pass;
+std::vector<raster::Pass> LayerPass(const PassMesh& mesh, const std::vector<uint32_t>& order,
+                                    const std::vector<glm::vec3>& coords,
+                                    const std::vector<ExitRay>& exits,
+                                    const glm::mat4& viewProjection, const PassOptions& options) {
+    std::vector<raster::Pass> passes(
+        static_cast<size_t>(LayoutOf(options.parameterization, 2).textures));
+    FillLayerPass(MakePassGeometry(mesh, order, viewProjection), coords, exits, options, passes);
+    return passes;
 }
 
 raster::Pass DepthOnlyPass(const PassMesh& mesh, const std::vector<uint32_t>& order,
@@ -193,7 +196,10 @@ PassGeometry MakePassGeometry(const PassMesh& mesh, const std::vector<uint32_t>&
 
 void FillLayerPass(const PassGeometry& geometry, const std::vector<glm::vec3>& coords,
                    const std::vector<ExitRay>& exits, const PassOptions& options,
-                   raster::Pass* pass, int threads) {
+                   std::span<raster::Pass> passes, int threads) {
+    if (passes.size() != static_cast<size_t>(LayoutOf(options.parameterization, 2).textures))
+        throw std::invalid_argument("FillLayerPass: one pass per texture of the layout");
+    raster::Pass* pass = &passes[0];
     pass->numUnits = 1;
     pass->texture = {options.texture, options.texture};
     pass->blend = options.blend;
@@ -209,8 +215,10 @@ void FillLayerPass(const PassGeometry& geometry, const std::vector<glm::vec3>& c
         }
     });
     pass->indices = geometry.indices;
-    if (options.parameterization != Parameterization::Cube)
-        *pass = ToLayout(*pass, 0, options.parameterization, options.eyeFromWorld);
+    if (options.parameterization == Parameterization::Cube) return;
+    std::vector<raster::Pass> charts =
+        ToLayout(*pass, 0, options.parameterization, options.eyeFromWorld);
+    std::move(charts.begin(), charts.end(), passes.begin());
 }
 
 }  // namespace pem::runtime

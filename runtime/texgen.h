@@ -23,6 +23,7 @@
 
 #include <glm/glm.hpp>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "raster/camera.h"
@@ -95,12 +96,16 @@ raster::Pass DepthOnlyPass(const PassMesh& mesh, const std::vector<uint32_t>& or
 // Clip-space transform shared by every pass of a frame: near/far around the mesh.
 glm::mat4 PassViewProjection(const PassMesh& mesh, const raster::Camera& camera);
 
-raster::Pass LayerPass(const PassMesh& mesh, const std::vector<uint32_t>& order,
-                       const std::vector<glm::vec3>& coords, const std::vector<ExitRay>& exits,
-                       const glm::mat4& viewProjection, const PassOptions& options);
+// A layer's passes: one per texture of the map (MapLayout::textures; ToLayout), the first
+// binding options.texture, the next options.texture + 1.
+std::vector<raster::Pass> LayerPass(const PassMesh& mesh, const std::vector<uint32_t>& order,
+                                    const std::vector<glm::vec3>& coords,
+                                    const std::vector<ExitRay>& exits,
+                                    const glm::mat4& viewProjection, const PassOptions& options);
 
 // LayerPass in two steps, for many passes over one mesh: what every layer shares (clip-space
-// positions, the index list), then each layer's pass written into `pass`, reusing its storage.
+// positions, the index list), then each layer's passes written into `passes` (as many as the
+// layout's textures), reusing their storage.
 struct PassGeometry {
     std::vector<glm::vec4> clip;
     std::vector<uint32_t> indices;
@@ -109,6 +114,6 @@ PassGeometry MakePassGeometry(const PassMesh& mesh, const std::vector<uint32_t>&
                               const glm::mat4& viewProjection, int threads = 1);
 void FillLayerPass(const PassGeometry& geometry, const std::vector<glm::vec3>& coords,
                    const std::vector<ExitRay>& exits, const PassOptions& options,
-                   raster::Pass* pass, int threads = 1);
+                   std::span<raster::Pass> passes, int threads = 1);
 
 }  // namespace pem::runtime

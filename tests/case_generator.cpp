@@ -1424,7 +1424,8 @@ void Anisotropy(std::vector<NamedCase>* out) {
 }
 
 // The 2D parameterizations (runtime/parameterization.h) on reflective spheres: lat-long with its
-// seam and poles, the sphere map's texgen, and the two-image atlases (per-triangle charts).
+// seam and poles, the sphere map's texgen, and the two-image layouts (two textures, one pass
+// each, every triangle in its chart's).
 // A coarse sphere shows the lat-long seam's interpolation across the whole map.
 void Parameterizations(std::vector<NamedCase>* out) {
     using runtime::Parameterization;
@@ -1452,10 +1453,12 @@ Frame LayoutSphere(runtime::Parameterization p, int size, const SamplerState& sa
     Frame f = NewFrame(96, 80);
     SamplerState s = sampler;
     s.wrapS = layout.wrapS, s.wrapT = layout.wrapT;
-    f.textures.push_back(MakeTexture(layout.kind, layout.width, layout.height, s, seed));
+    for (int c = 0; c < layout.textures; ++c)
+        f.textures.push_back(
+            MakeTexture(layout.kind, layout.width, layout.height, s, seed + uint64_t(c) * 7919));
     Pass cube;
     AddSphere(&cube, rings, segments, 96.0f / 80.0f, eye, {0, 0, 0}, 1.0f, 1.0f);
-    f.passes.push_back(runtime::ToLayout(cube, 0, p, eyeFromWorld));
+    for (Pass& pass : runtime::ToLayout(cube, 0, p, eyeFromWorld)) f.passes.push_back(pass);
     return f;
 }
 

@@ -121,6 +121,33 @@ TEST(PemFile, TwoDimensionalRoundTripExact) {
         ASSERT_EQ(level0.height, h);
         EXPECT_EQ(level0.rgba, map.levels[0]);
     }
+    // Two charts (the paraboloid's and the tennis ball's two textures): both side by side in
+    // one image per level, each chart's MIP chain whole, read back as two charts.
+    for (auto [w, h, levels] : {std::tuple{8, 8, 4}, std::tuple{16, 4, 5}, std::tuple{2, 2, 2}}) {
+        EnvMapF map = Random2DMap(w, h, 0, 11);
+        map.charts = 2;
+        EnvMapF filled = Random2DMap(2 * w * h, 1, 1, 13);  // values to deal out
+        size_t next = 0;
+        for (int l = 0; l < levels; ++l) {
+            std::vector<float> v(map.LevelTexels(l) * 4);
+            for (float& x : v) x = filled.levels[0][next++ % filled.levels[0].size()] + l;
+            map.levels.push_back(std::move(v));
+        }
+        const std::string path = OutputPath("roundtrip2charts_" + std::to_string(w) + ".exr");
+        WriteEnvMapExr(map, path);
+        const EnvMapF back = ReadEnvMapExr(path);
+        EXPECT_EQ(back.charts, 2);
+        EXPECT_TRUE(back == map) << w << "x" << h;
+        const ExrLevelImage level0 = ReadExrLevel(path, 0);
+        ASSERT_EQ(level0.width, 2 * w);
+        ASSERT_EQ(level0.height, h);
+        // Row 0 of the image: chart 0's row 0, then chart 1's.
+        const size_t row = static_cast<size_t>(w) * 4, chart1 = static_cast<size_t>(w * h) * 4;
+        for (size_t k = 0; k < row; ++k) {
+            EXPECT_EQ(level0.rgba[k], map.levels[0][k]);
+            EXPECT_EQ(level0.rgba[row + k], map.levels[0][chart1 + k]);
+        }
+    }
     // Wrong level sizes and non-power-of-two shapes are refused before a file is written.
     EnvMapF bad = Random2DMap(16, 8, 2, 3);
     bad.levels[1].pop_back();
@@ -172,7 +199,7 @@ TEST(PemFile, EightBitCopy) {
                           0,
                           0,
                           0});
-    const raster::Texture t = ToTexture8(map, {});
+    const raster::Texture t = ToTextures8(map, {}).front();
     const std::vector<uint8_t> expect{0, 0, 0, 1, 255, 255, 255, 0, 64, 128, 191, 255};
     for (size_t k = 0; k < expect.size(); ++k) EXPECT_EQ(t.levels[0][k], expect[k]) << k;
 }
@@ -202,7 +229,7 @@ TEST(PemFile, EightBitCopyRoundsAsNearbyint) {
     for (size_t k = 0; k < values.size(); k += 24)
         map.levels.emplace_back(values.begin() + static_cast<std::ptrdiff_t>(k),
                                 values.begin() + static_cast<std::ptrdiff_t>(k + 24));
-    const raster::Texture t = ToTexture8(map, {});
+    const raster::Texture t = ToTextures8(map, {}).front();
     size_t bad = 0;
     for (size_t k = 0; k < values.size(); ++k) {
         const auto want =

@@ -50,7 +50,8 @@ TEST(Recovery, LinearProfileMirrorSphere) {
     const testing::ImageError e = MaskedError(sys, ApplyRendering(s.a, xs, 1), s.b);
     // ... and through raster/ with the 8-bit copy (linear profile: float framebuffer).
     raster::Frame g = s.frame;
-    g.textures[0] = ToTexture8(EnvMapFromSolution(res.x, sys.layout), s.frame.textures[0].sampler);
+    g.textures[0] =
+        ToTextures8(EnvMapFromSolution(res.x, sys.layout), s.frame.textures[0].sampler).front();
     raster::RenderOptions lin;
     lin.profile = raster::Profile::Linear;
     const raster::ImageF img = raster::Render(raster::PreparedFrame(g), lin).imageF;
@@ -74,12 +75,16 @@ void RecoverThroughProfile(const raster::RenderOptions& profile, const std::stri
     const raster::PreparedFrame prepared(frame);
     const raster::RenderingMatrix a = raster::BuildRenderingMatrix(prepared, profile);
     const raster::Image8 target = raster::Render(prepared, profile).image8;
-    const LinearSystem sys = BuildSystem(a, frame, 0, {a.rendered, {}}, Weak());
+    SystemOptions so;  // a two-image layout's map: its two textures
+    so.charts = static_cast<int>(frame.textures.size());
+    const LinearSystem sys = BuildSystem(a, frame, 0, {a.rendered, {}}, Weak(), so);
     const SolveResult res = SolveIterative(sys, InitialGuess(sys), BoundedOptions());
     testing::PrintSolve(("recovery " + name).c_str(), sys, res);
     WriteLogCsv(res.log, testing::OutputPath("recovery_" + name + ".csv"));
     raster::Frame g = frame;
-    g.textures[0] = Texture8FromSolution(res.x, sys.layout, frame.textures[0].sampler);
+    const std::vector<raster::Texture> fit =
+        Texture8FromSolution(res.x, sys.layout, frame.textures[0].sampler);
+    std::copy(fit.begin(), fit.end(), g.textures.begin());
     const raster::Image8 out = raster::Render(raster::PreparedFrame(g), profile).image8;
     double sum = 0.0, maxAbs = 0.0;
     for (int64_t r : sys.imageRowOf) {
@@ -113,7 +118,8 @@ TEST(Recovery, SoftpipeProfileMirrorSphere) {
 }
 
 // The four 2D layouts of runtime/parameterization.h (lat-long with Repeat along s, the sphere
-// map, the two-image atlases) fitted through llvmpipe's rendering matrix like the cube.
+// map, the two-image layouts' two textures as one map) fitted through llvmpipe's rendering
+// matrix like the cube.
 TEST(Recovery, LlvmpipeProfile2DLayouts) {
     for (runtime::Parameterization p : runtime::kParameterizations) {
         if (p == runtime::Parameterization::Cube) continue;

@@ -2,7 +2,8 @@
 # layouts_cli.sh PEMREF DATA_DIR MASKED_PSNR — the notes' five EM layouts through the command line:
 #  1. scene (a) traced once; `infer --parameterization` for each layout: the manifest names it,
 #     a 2D layout's maps are plain W x H OpenEXR images of the layout's shape (exrheader: no
-#     envmap attribute), and the hybrid and PEM frames drawn from them at the sample come closer
+#     envmap attribute; the paraboloid's and the tennis ball's two textures side by side, with
+#     pemrefCharts 2), and the hybrid and PEM frames drawn from them at the sample come closer
 #     to the traced two-term frame than the static EM (by 3 dB) on every lens group (the outside check:
 #     masked_psnr against the trace's greedy.exr on b_R's pixels), the cube's figures beside;
 #     the static EM traced in each layout (render --parameterization) within 2 dB of the
@@ -34,13 +35,20 @@ for p in cube latlong sphere paraboloid tennis; do
 done
 "$pemref" render "$work/cube" --view sample:0 --method static --threads 2 --quiet \
     -o "$work/static.exr"
-# A 2D map's shape: lat-long, paraboloid and tennis 2n x n, the sphere map n x n (n = 32).
-for pw in latlong:64 sphere:32 paraboloid:64 tennis:64; do
-  p=${pw%%:*} w=${pw##*:}
+# A 2D map's shape (n = 32): lat-long 2n x n, the sphere map n x n, the paraboloid two n x n
+# textures, the tennis ball two 2n x n/2 bands, each pair side by side.
+for pwhc in latlong:64:32:1 sphere:32:32:1 paraboloid:64:32:2 tennis:128:16:2; do
+  IFS=: read -r p w h charts <<<"$pwhc"
   hdr=$(exrheader "$work/$p/view_000/group_0/layer_0.exr")
-  grep -q "dataWindow (type box2i): (0 0) - ($((w - 1)) 31)" <<<"$hdr" ||
-    { echo "FAIL: $p: layer_0.exr is not ${w} x 32"; echo "$hdr"; exit 1; }
+  grep -q "dataWindow (type box2i): (0 0) - ($((w - 1)) $((h - 1)))" <<<"$hdr" ||
+    { echo "FAIL: $p: layer_0.exr is not ${w} x ${h}"; echo "$hdr"; exit 1; }
   if grep -q "envmap" <<<"$hdr"; then echo "FAIL: $p: a 2D map with an envmap attribute"; exit 1; fi
+  if [ "$charts" = 2 ]; then
+    grep -q "pemrefCharts (type int): 2" <<<"$hdr" ||
+      { echo "FAIL: $p: layer_0.exr does not say it holds two charts"; echo "$hdr"; exit 1; }
+  elif grep -q "pemrefCharts" <<<"$hdr"; then
+    echo "FAIL: $p: one texture, but pemrefCharts"; exit 1
+  fi
 done
 for g in 0 1; do
   mask="$work/trace/view_000/group_$g/b_R.exr"

@@ -143,9 +143,9 @@ TEST(ByteCodec, BothCodecsGiveBackTheBytes) {
 PemManifest MakeNoisyPemDir(const fs::path& dir) {
     PemManifest m = MakePemDir(dir);
     raster::Texture t = Picture(8, 4, 7);
-    infer::WriteEnvMapExr(infer::FromTexture8(t), MapPath(m.dir, 0, 0, "pem_distant"));
-    infer::WriteEnvMapExr(infer::FromTexture8(Picture(8, 4, 8, 1)),
-                          MapPath(m.dir, 0, 0, "pem_local"));
+    infer::WriteEnvMapExr(infer::FromTextures8({&t, 1}), MapPath(m.dir, 0, 0, "pem_distant"));
+    const raster::Texture local = Picture(8, 4, 8, 1);
+    infer::WriteEnvMapExr(infer::FromTextures8({&local, 1}), MapPath(m.dir, 0, 0, "pem_local"));
     base::WriteTextAtomic(m.dir + "/infer.json", "{\"note\": \"kept verbatim\"}\n");
     return m;
 }

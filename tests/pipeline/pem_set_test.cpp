@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstring>
 
 #include "base/input_error.h"
@@ -103,6 +104,48 @@ TEST(PemSet, TwoDimensionalLayouts) {
     EXPECT_THROW(set.map(0, 0, "pem_local"), base::InputError);  // a cube map
     EXPECT_THROW(PackPem(m.dir, (dir / "p.pempack").string(), {}), base::InputError);
     EXPECT_FALSE(fs::exists(dir / "p.pempack"));
+    fs::remove_all(dir);
+}
+
+// A two-image layout's map: two textures (charts) of the layout's shape, each with its own MIP
+// chain; a map of one chart of that shape, or the charts' shape as one image, is refused.
+TEST(PemSet, TwoImageLayoutsAreTwoTextures) {
+    const fs::path dir = FreshDir("pem_paraboloid");
+    PemManifest m = MakePemDir(dir);
+    m.parameterization = runtime::Parameterization::Paraboloid;
+    WritePemManifest(m);
+    infer::EnvMapF map;  // LayoutOf(Paraboloid, 8): two 8 x 8 textures
+    map.kind = raster::TextureKind::Tex2D;
+    map.size = 8, map.height = 8, map.charts = 2;
+    for (int l = 0; l < 4; ++l) {
+        map.levels.emplace_back(map.LevelTexels(l) * 4, 0.25f);
+        std::fill(map.levels.back().begin() + static_cast<std::ptrdiff_t>(map.LevelTexels(l) * 2),
+                  map.levels.back().end(), 0.5f);  // chart 1
+    }
+    infer::WriteEnvMapExr(map, MapPath(m.dir, 0, 0, "pem_distant"));
+    infer::EnvMapF one = map;  // one 8 x 8 chart
+    one.charts = 1;
+    for (int l = 0; l < 4; ++l) one.levels[static_cast<size_t>(l)].resize(one.LevelTexels(l) * 4);
+    infer::WriteEnvMapExr(one, MapPath(m.dir, 0, 0, "pem_local"));
+    infer::EnvMapF atlas = one;  // the old atlas: one 16 x 8 image
+    atlas.size = 16;
+    atlas.levels.emplace_back();
+    for (int l = 0; l < 5; ++l)
+        atlas.levels[static_cast<size_t>(l)].assign(atlas.LevelTexels(l) * 4, 0.25f);
+    infer::WriteEnvMapExr(atlas, MapPath(m.dir, 0, 0, "layer_0"));
+    const runtime::MapSet set = LoadMapSet(ReadPemManifest(m.dir));
+    const raster::Texture* t = set.map(0, 0, "pem_distant");
+    ASSERT_NE(t, nullptr);
+    for (int c = 0; c < 2; ++c) {
+        EXPECT_EQ(t[c].kind, raster::TextureKind::Tex2D);
+        EXPECT_EQ(t[c].width, 8);
+        EXPECT_EQ(t[c].height, 8);
+        EXPECT_EQ(t[c].NumLevels(), 4);
+        EXPECT_EQ(t[c].sampler.wrapS, raster::Wrap::ClampToEdge);
+        EXPECT_EQ(t[c].levels[3][0], c == 0 ? 64 : 128);  // 0.25, 0.5 * 255 rounded
+    }
+    EXPECT_THROW(set.map(0, 0, "pem_local"), base::InputError);
+    EXPECT_THROW(set.map(0, 0, "layer_0"), base::InputError);
     fs::remove_all(dir);
 }
 

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <functional>
 #include <glm/glm.hpp>
+#include <vector>
 
 #include "raster/cube_lookup.h"
 #include "raster/frame.h"
@@ -15,12 +16,11 @@
 
 namespace pem::runtime::testing {
 
-// A map of layout `p` at `size`, every level's texel (bytes) = env(world direction of its
-// centre); worldFromEye turns the sphere map's eye-space directions into world ones.
-inline raster::Texture FilledMap(Parameterization p, int size,
-                                 const std::function<glm::dvec4(glm::dvec3)>& env,
-                                 const glm::dmat3& worldFromEye = glm::dmat3(1.0)) {
-    raster::Texture t = EmptyTexture(LayoutOf(p, size), {});
+// One texture (chart) of the map FilledMap gives.
+inline raster::Texture FilledChart(Parameterization p, const MapLayout& layout, int chart,
+                                   const std::function<glm::dvec4(glm::dvec3)>& env,
+                                   const glm::dmat3& worldFromEye) {
+    raster::Texture t = EmptyTexture(layout, {});
     for (int l = 0; l < t.NumLevels(); ++l) {
         const int w = t.LevelWidth(l), h = t.LevelHeight(l);
         for (int f = 0; f < t.Faces(); ++f)
@@ -35,7 +35,7 @@ inline raster::Texture FilledMap(Parameterization p, int size,
                         d = glm::normalize(glm::dvec3(c[0], c[1], c[2]));
                     } else {
                         const glm::dvec2 st((i + 0.5) / w, (j + 0.5) / h);
-                        d = LayoutDirection(p, st);
+                        d = LayoutDirection(p, chart, st);
                         if (p == Parameterization::Sphere) d = worldFromEye * d;
                     }
                     const glm::dvec4 v = env(d);
@@ -46,6 +46,19 @@ inline raster::Texture FilledMap(Parameterization p, int size,
                 }
     }
     return t;
+}
+
+// A map of layout `p` at `size` (its textures: one, or two charts), every level's texel (bytes)
+// = env(world direction of its centre); worldFromEye turns the sphere map's eye-space
+// directions into world ones.
+inline std::vector<raster::Texture> FilledMap(Parameterization p, int size,
+                                              const std::function<glm::dvec4(glm::dvec3)>& env,
+                                              const glm::dmat3& worldFromEye = glm::dmat3(1.0)) {
+    const MapLayout layout = LayoutOf(p, size);
+    std::vector<raster::Texture> out;
+    for (int chart = 0; chart < layout.textures; ++chart)
+        out.push_back(FilledChart(p, layout, chart, env, worldFromEye));
+    return out;
 }
 
 }  // namespace pem::runtime::testing

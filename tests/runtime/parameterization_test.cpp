@@ -14,13 +14,6 @@
 namespace pem::runtime {
 namespace {
 
-// The chart's image in atlas coordinates: [x0, x1] × [y0, y1].
-glm::dvec4 ChartBox(Parameterization p, int chart) {
-    if (p == Parameterization::Paraboloid) return {chart * 0.5, chart * 0.5 + 0.5, 0.0, 1.0};
-    if (p == Parameterization::Tennis) return {0.0, 1.0, chart * 0.5, chart * 0.5 + 0.5};
-    return {0.0, 1.0, 0.0, 1.0};
-}
-
 TEST(Parameterization, NamesRoundTrip) {
     for (Parameterization p : kParameterizations)
         EXPECT_EQ(ParseParameterization(ParameterizationName(p)), p);
@@ -31,11 +24,17 @@ TEST(Parameterization, LayoutsAndTheirTexels) {
     EXPECT_EQ(LayoutOf(Parameterization::Cube, 32).Texels(), 6 * 32 * 32);
     EXPECT_EQ(LayoutOf(Parameterization::LatLong, 32).Texels(), 2 * 32 * 32);
     EXPECT_EQ(LayoutOf(Parameterization::Sphere, 32).Texels(), 32 * 32);
-    EXPECT_EQ(LayoutOf(Parameterization::Paraboloid, 32).charts, 2);
+    EXPECT_EQ(LayoutOf(Parameterization::Paraboloid, 32).Texels(), 2 * 32 * 32);
+    EXPECT_EQ(LayoutOf(Parameterization::Tennis, 32).Texels(), 2 * 32 * 32);
+    EXPECT_EQ(LayoutOf(Parameterization::Paraboloid, 32).textures, 2);  // two textures
+    EXPECT_EQ(LayoutOf(Parameterization::Paraboloid, 32).width, 32);
+    EXPECT_EQ(LayoutOf(Parameterization::LatLong, 32).textures, 1);
     EXPECT_EQ(LayoutOf(Parameterization::LatLong, 32).wrapS, raster::Wrap::Repeat);
     EXPECT_THROW(LayoutOf(Parameterization::Tennis, 24), std::invalid_argument);
     const raster::Texture t = EmptyTexture(LayoutOf(Parameterization::Tennis, 8), {});
-    ASSERT_EQ(t.NumLevels(), 5);  // 16x8 ... 1x1
+    ASSERT_EQ(t.width, 16);  // one band: 16x4 ... 1x1, its own MIP chain
+    ASSERT_EQ(t.height, 4);
+    ASSERT_EQ(t.NumLevels(), 5);
     EXPECT_EQ(t.levels.back().size(), 4u);
 }
 
@@ -54,13 +53,11 @@ TEST(Parameterization, DirectionsRoundTripThroughTheirChart) {
             if (p == Parameterization::Sphere && d.z < -0.999f) continue;  // the rim's pole
             const int chart = ChartOf(p, d * 3.0f);                        // any length
             const glm::vec2 st = ChartCoord(p, d * 3.0f, chart, identity);
-            const glm::dvec4 box = ChartBox(p, chart);
-            ASSERT_GE(st.x, box.x) << ParameterizationName(p);
-            ASSERT_LE(st.x, box.y) << ParameterizationName(p);
-            ASSERT_GE(st.y, box.z) << ParameterizationName(p);
-            ASSERT_LE(st.y, box.w) << ParameterizationName(p);
-            ASSERT_EQ(ChartAt(p, glm::dvec2(st)), chart) << ParameterizationName(p);
-            const glm::dvec3 back = LayoutDirection(p, glm::dvec2(st));
+            ASSERT_GE(st.x, 0.0f) << ParameterizationName(p);
+            ASSERT_LE(st.x, 1.0f) << ParameterizationName(p);
+            ASSERT_GE(st.y, 0.0f) << ParameterizationName(p);
+            ASSERT_LE(st.y, 1.0f) << ParameterizationName(p);
+            const glm::dvec3 back = LayoutDirection(p, chart, glm::dvec2(st));
             worst = std::max(worst, glm::length(back - glm::dvec3(d)));
         }
         EXPECT_LT(worst, 2e-3) << ParameterizationName(p);  // float coordinates near the rim
@@ -79,7 +76,8 @@ TEST(Parameterization, SphereMapUsesEyeSpace) {
     EXPECT_GT(std::abs(t.x - 0.5f), 0.3f);  // the same world direction, seen from the side
 }
 
-// ToLayout: one chart per triangle, three corners each, lat-long's seam interpolated across.
+// ToLayout: one chart per triangle, three corners each, lat-long's seam interpolated across; a
+// two-image layout's triangles in the pass of their chart's texture.
 TEST(Parameterization, ToLayoutGivesEachTriangleOneChart) {
     raster::Pass cube;
     auto vertex = [](glm::vec3 d) {
@@ -91,15 +89,23 @@ TEST(Parameterization, ToLayoutGivesEachTriangleOneChart) {
     cube.vertices = {vertex({-0.1f, 0, 1}),  vertex({0.1f, 0, 1}),  vertex({0, 0.1f, 1}),
                      vertex({-0.1f, 0, -1}), vertex({0.1f, 0, -1}), vertex({0, 0.1f, -1})};
     const glm::mat3 identity(1.0f);
-    const raster::Pass ll = ToLayout(cube, 0, Parameterization::LatLong, identity);
+    cube.texture = {3, 0};
+    const std::vector<raster::Pass> lls = ToLayout(cube, 0, Parameterization::LatLong, identity);
+    ASSERT_EQ(lls.size(), 1u);
+    const raster::Pass& ll = lls[0];
     ASSERT_EQ(ll.vertices.size(), 6u);
     EXPECT_TRUE(ll.indices.empty());
     EXPECT_LT(ll.vertices[0].coord[0].x, 0.05f);  // s near 0 and near 1 in one triangle
     EXPECT_GT(ll.vertices[1].coord[0].x, 0.95f);
-    const raster::Pass pb = ToLayout(cube, 0, Parameterization::Paraboloid, identity);
-    for (int k = 0; k < 3; ++k) EXPECT_LE(pb.vertices[k].coord[0].x, 0.5f);  // left image
-    for (int k = 3; k < 6; ++k) EXPECT_GE(pb.vertices[k].coord[0].x, 0.5f);  // right image
-    EXPECT_EQ(ToLayout(cube, 0, Parameterization::Cube, identity), cube);
+    const std::vector<raster::Pass> pb = ToLayout(cube, 0, Parameterization::Paraboloid, identity);
+    ASSERT_EQ(pb.size(), 2u);
+    ASSERT_EQ(pb[0].vertices.size(), 3u);  // z >= 0: the front image
+    ASSERT_EQ(pb[1].vertices.size(), 3u);  // z < 0: the back image
+    EXPECT_EQ(pb[0].texture[0], 3);
+    EXPECT_EQ(pb[1].texture[0], 4);
+    EXPECT_EQ(pb[0].vertices[0].pos, cube.vertices[0].pos);
+    EXPECT_EQ(pb[1].vertices[0].pos, cube.vertices[3].pos);
+    EXPECT_EQ(ToLayout(cube, 0, Parameterization::Cube, identity), std::vector{cube});
 }
 
 }  // namespace

@@ -92,8 +92,8 @@ TEST(Texgen, DrawOrderIsAStableSortForAnyThreadCount) {
         PassOptions po;
         po.modulate = true;
         raster::Pass a, b;
-        FillLayerPass(one, coords, f.exits, po, &a);
-        FillLayerPass(one, coords, f.exits, po, &b, threads);
+        FillLayerPass(one, coords, f.exits, po, {&a, 1});
+        FillLayerPass(one, coords, f.exits, po, {&b, 1}, threads);
         EXPECT_EQ(b, a) << threads;
     }
 }
@@ -112,8 +112,8 @@ TEST(Texgen, FillLayerPassEqualsLayerPass) {
         po.texture = modulate ? 1 : 0;
         po.modulate = modulate;
         po.blend = modulate ? raster::BlendState::Over() : raster::BlendState::None();
-        FillLayerPass(geometry, coords, f.exits, po, &reused);
-        EXPECT_EQ(reused, LayerPass(mesh, order, coords, f.exits, vp, po)) << modulate;
+        FillLayerPass(geometry, coords, f.exits, po, {&reused, 1});
+        EXPECT_EQ(std::vector{reused}, LayerPass(mesh, order, coords, f.exits, vp, po)) << modulate;
     }
 }
 
