@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// map_coding.cpp — predictive coding of 8-bit cube maps (map_coding.h).
+// map_coding.cpp — predictive coding of 8-bit environment maps (map_coding.h).
 #include "pipeline/map_coding.h"
 
 #include <algorithm>
@@ -15,29 +15,54 @@ enum Base : uint8_t { kZero = 0, kPrevious = 1, kDecimated = 2, kBases = 3 };
 
 using Level = std::vector<uint8_t>;
 
-size_t LevelBytes(int width, int level) {
-    const size_t n = static_cast<size_t>(std::max(1, width >> level));
-    return 6 * n * n * 4;
+// The next coarser level (level + 1) of a box-filtered chain: 2×2 means (2×1 or 1×2 where one
+// size stays at 1), rounded; a 1×1 face stays.
+Level Decimate(const Level& fine, const MapShape& shape, int level) {
+    const int w = shape.LevelWidth(level), h = shape.LevelHeight(level);
+    if (w == 1 && h == 1) return fine;
+    const int mw = shape.LevelWidth(level + 1), mh = shape.LevelHeight(level + 1);
+    const int sx = w / mw, sy = h / mh, count = sx * sy;
+    Level out(static_cast<size_t>(shape.faces) * static_cast<size_t>(mw) * mh * 4);
+    for (int f = 0; f < shape.faces; ++f)
+        for (int j = 0; j < mh; ++j)
+            for (int i = 0; i < mw; ++i)
+                for (int c = 0; c < 4; ++c) {
+                    int sum = 0;
+                    for (int dj = 0; dj < sy; ++dj)
+                        for (int di = 0; di < sx; ++di)
+                            sum += fine[((static_cast<size_t>(f) * h + sy * j + dj) * w + sx * i +
+                                         di) *
+                                            4 +
+                                        c];
+                    out[((static_cast<size_t>(f) * mh + j) * mw + i) * 4 + c] =
+                        static_cast<uint8_t>((sum + count / 2) / count);
+                }
+    return out;
 }
 
-// The next coarser level of a box-filtered chain: 2×2 means, rounded (a 1×1 face stays).
-Level Decimate(const Level& fine, int n) {
-    if (n == 1) return fine;
-    const int m = n / 2;
-    Level out(6 * static_cast<size_t>(m) * m * 4);
-    for (int f = 0; f < 6; ++f)
-        for (int j = 0; j < m; ++j)
-            for (int i = 0; i < m; ++i)
-                for (int c = 0; c < 4; ++c) {
-                    auto at = [&](int x, int y) {
-                        return static_cast<int>(
-                            fine[((static_cast<size_t>(f) * n + y) * n + x) * 4 + c]);
-                    };
-                    const int sum = at(2 * i, 2 * j) + at(2 * i + 1, 2 * j) + at(2 * i, 2 * j + 1) +
-                                    at(2 * i + 1, 2 * j + 1);
-                    out[((static_cast<size_t>(f) * m + j) * m + i) * 4 + c] =
-                        static_cast<uint8_t>((sum + 2) >> 2);
-                }
+// A map's textures as one level list (every face of each level, texture after texture), and
+// back.
+std::vector<Level> Stacked(std::span<const raster::Texture> map) {
+    std::vector<Level> levels(map.empty() ? 0 : map[0].levels.size());
+    for (size_t l = 0; l < levels.size(); ++l)
+        for (const raster::Texture& t : map)
+            levels[l].insert(levels[l].end(), t.levels[l].begin(), t.levels[l].end());
+    return levels;
+}
+
+std::vector<raster::Texture> Unstacked(std::vector<Level> levels, const MapShape& shape) {
+    const size_t textures = shape.kind == raster::TextureKind::Cube ? 1 : size_t(shape.faces);
+    std::vector<raster::Texture> out(textures);
+    for (size_t k = 0; k < textures; ++k) {
+        out[k].kind = shape.kind;
+        out[k].width = shape.width;
+        out[k].height = shape.height;
+        for (Level& level : levels) {
+            const size_t n = level.size() / textures;
+            out[k].levels.emplace_back(level.begin() + static_cast<std::ptrdiff_t>(k * n),
+                                       level.begin() + static_cast<std::ptrdiff_t>((k + 1) * n));
+        }
+    }
     return out;
 }
 
@@ -57,18 +82,25 @@ int Unzigzag(uint8_t z) {
 
 // One channel of one level, texel by texel in stream order: `value(index, prediction)` returns
 // the decoded byte of the texel at `index` given its prediction (and codes it).
+// The level's faces and texels: faces of w × h.
+struct LevelSize {
+    int faces, w, h;
+};
+
 template <class Step>
-void CodeChannel(Level& recon, const Level* base, int n, int c, bool spatial, const Step& value) {
+void CodeChannel(Level& recon, const Level* base, LevelSize size, int c, bool spatial,
+                 const Step& value) {
     auto residual = [&](size_t idx) {
         return static_cast<int>(recon[idx]) - (base ? static_cast<int>((*base)[idx]) : 0);
     };
-    for (int f = 0; f < 6; ++f)
-        for (int j = 0; j < n; ++j)
-            for (int i = 0; i < n; ++i) {
-                const size_t idx = ((static_cast<size_t>(f) * n + j) * n + i) * 4 + c;
+    const int w = size.w, h = size.h;
+    for (int f = 0; f < size.faces; ++f)
+        for (int j = 0; j < h; ++j)
+            for (int i = 0; i < w; ++i) {
+                const size_t idx = ((static_cast<size_t>(f) * h + j) * w + i) * 4 + c;
                 int pred = base ? (*base)[idx] : 0;
                 if (spatial && (i > 0 || j > 0)) {
-                    const size_t left = idx - 4, up = idx - 4 * static_cast<size_t>(n);
+                    const size_t left = idx - 4, up = idx - 4 * static_cast<size_t>(w);
                     if (j == 0)
                         pred += residual(left);
                     else if (i == 0)
@@ -100,68 +132,114 @@ struct Bases {
     const Level* of[kBases] = {nullptr, nullptr, nullptr};
 };
 
-Bases BasesAt(int level, const raster::Texture* previous, const Level* decimated) {
+Bases BasesAt(int level, const std::vector<Level>* previous, const Level* decimated) {
     Bases b;
-    if (previous) b.of[kPrevious] = &previous->levels[static_cast<size_t>(level)];
+    if (previous) b.of[kPrevious] = &(*previous)[static_cast<size_t>(level)];
     if (level > 0) b.of[kDecimated] = decimated;
     return b;
 }
 
 // Open-loop cost of a predictor on the original bytes: the sum of |residual|.
-long Cost(const Level& original, const Level* base, int n, int c, bool spatial) {
+long Cost(const Level& original, const Level* base, LevelSize size, int c, bool spatial) {
     Level scratch = original;
     long cost = 0;
-    CodeChannel(scratch, base, n, c, spatial, [&](size_t idx, int pred) {
+    CodeChannel(scratch, base, size, c, spatial, [&](size_t idx, int pred) {
         cost += std::abs(static_cast<int>(original[idx]) - pred);
         return original[idx];
     });
     return cost;
 }
 
-bool UsablePrevious(const raster::Texture* previous, int width, int levels) {
-    return previous && previous->kind == raster::TextureKind::Cube && previous->width == width &&
-           previous->NumLevels() == levels;
+// The previous sample's map as levels, when it has the map's shape and levels (else empty).
+std::vector<Level> UsablePrevious(std::span<const raster::Texture> previous, const MapShape& shape,
+                                  int levels) {
+    if (previous.empty() ||
+        previous.size() !=
+            (shape.kind == raster::TextureKind::Cube ? 1 : static_cast<size_t>(shape.faces)))
+        return {};
+    for (const raster::Texture& t : previous)
+        if (t.kind != shape.kind || t.width != shape.width || t.height != shape.height ||
+            t.NumLevels() != levels)
+            return {};
+    return Stacked(previous);
+}
+
+LevelSize SizeAt(const MapShape& shape, int level) {
+    return {shape.faces, shape.LevelWidth(level), shape.LevelHeight(level)};
+}
+
+// A level the transform codec takes: faces at least kMinTransformSize wide and tall.
+bool Transformed(const MapShape& shape, int level, double ratio) {
+    return ratio > 0.0 && shape.LevelWidth(level) >= kMinTransformSize &&
+           shape.LevelHeight(level) >= kMinTransformSize;
 }
 
 }  // namespace
 
-size_t ResidualBytes(int width, int levels) {
+size_t MapShape::LevelBytes(int level) const {
+    return static_cast<size_t>(faces) * static_cast<size_t>(LevelWidth(level)) *
+           static_cast<size_t>(LevelHeight(level)) * 4;
+}
+
+int MapShape::ChainLevels() const {
+    int levels = 1;
+    for (int m = std::max(width, height); m > 1; m >>= 1) ++levels;
+    return levels;
+}
+
+MapShape ShapeOf(std::span<const raster::Texture> map) {
+    if (map.empty()) throw std::invalid_argument("ShapeOf: a map has a texture");
+    const raster::Texture& t = map[0];
+    if (t.kind == raster::TextureKind::Cube && map.size() != 1)
+        throw std::invalid_argument("ShapeOf: a cube map is one texture");
+    for (const raster::Texture& o : map)
+        if (o.kind != t.kind || o.width != t.width || o.height != t.height ||
+            o.NumLevels() != t.NumLevels())
+            throw std::invalid_argument("ShapeOf: a map's textures differ in shape");
+    return {t.kind, t.kind == raster::TextureKind::Cube ? 6 : static_cast<int>(map.size()), t.width,
+            t.height};
+}
+
+size_t ResidualBytes(const MapShape& shape, int levels) {
     size_t total = 0;
-    for (int l = 0; l < levels; ++l) total += LevelBytes(width, l);
+    for (int l = 0; l < levels; ++l) total += shape.LevelBytes(l);
     return total;
 }
 
-size_t PredictedBytes(int width, const std::vector<std::vector<uint8_t>>& transformed) {
+size_t PredictedBytes(const MapShape& shape, const std::vector<std::vector<uint8_t>>& transformed) {
     size_t total = 0;
     for (size_t l = 0; l < transformed.size(); ++l)
-        if (transformed[l].empty()) total += LevelBytes(width, static_cast<int>(l));
+        if (transformed[l].empty()) total += shape.LevelBytes(static_cast<int>(l));
     return total;
 }
 
-MapCode EncodeMap(const raster::Texture& texture, const raster::Texture* previous,
+MapCode EncodeMap(std::span<const raster::Texture> map, std::span<const raster::Texture> previous,
                   const MapCodeOptions& options) {
+    const MapShape shape = ShapeOf(map);
     const int maxError = options.maxError;
     const double ratio = options.ratio;
-    const int levels = texture.NumLevels();
-    if (!UsablePrevious(previous, texture.width, levels)) previous = nullptr;
+    const int levels = map[0].NumLevels();
+    const std::vector<Level> original = Stacked(map);
+    const std::vector<Level> prev = UsablePrevious(previous, shape, levels);
+    const std::vector<Level>* before = prev.empty() ? nullptr : &prev;
     const Quantizer quant{maxError};
     MapCode code;
-    code.residuals.reserve(ResidualBytes(texture.width, levels));
+    code.residuals.reserve(ResidualBytes(shape, levels));
     Level decimated;
     for (int l = 0; l < levels; ++l) {
-        const int n = texture.LevelWidth(l);
-        const Level& original = texture.levels[static_cast<size_t>(l)];
-        if (l > 0) decimated = Decimate(decimated, texture.LevelWidth(l - 1));
-        const Bases bases = BasesAt(l, previous, &decimated);
-        Level recon(original.size());
+        const LevelSize size = SizeAt(shape, l);
+        const Level& level = original[static_cast<size_t>(l)];
+        if (l > 0) decimated = Decimate(decimated, shape, l - 1);
+        const Bases bases = BasesAt(l, before, &decimated);
+        Level recon(level.size());
         code.transformed.emplace_back();
-        if (ratio > 0.0 && n >= kMinTransformSize) {
+        if (Transformed(shape, l, ratio)) {
             // The level by the transform codec (the finest level's decoded bytes: the base of
             // the decimated predictor below).
             const double levelRatio = l == 0 || ratio <= 1.0 ? ratio : 2.0 * ratio;
-            code.transformed.back() =
-                base::EncodeJ2k({n, 6 * n, 4, original}, levelRatio, options.wavelet);
-            recon = base::DecodeJ2k(code.transformed.back(), n, 6 * n, 4).data;
+            code.transformed.back() = base::EncodeJ2k({size.w, size.faces * size.h, 4, level},
+                                                      levelRatio, options.wavelet);
+            recon = base::DecodeJ2k(code.transformed.back(), size.w, size.faces * size.h, 4).data;
             code.predictors.insert(code.predictors.end(), 4, 0);
             if (l == 0) decimated = recon;
             continue;
@@ -172,63 +250,66 @@ MapCode EncodeMap(const raster::Texture& texture, const raster::Texture* previou
             long bestCost = -1;
             for (int p = 0; p < 2 * kBases; ++p) {
                 if (p / 2 != kZero && !bases.of[p / 2]) continue;
-                const long cost = Cost(original, bases.of[p / 2], n, c, p % 2 == 1);
+                const long cost = Cost(level, bases.of[p / 2], size, c, p % 2 == 1);
                 if (bestCost < 0 || cost < bestCost) best = p, bestCost = cost;
             }
             code.predictors.push_back(static_cast<uint8_t>(best));
             // Step 2: code the channel against the decoded values.
-            CodeChannel(recon, bases.of[best / 2], n, c, best % 2 == 1, [&](size_t idx, int pred) {
-                const int k = quant.Index(original[idx], pred);
-                code.residuals.push_back(Zigzag(k));
-                return quant.Value(k, pred);
-            });
+            CodeChannel(recon, bases.of[best / 2], size, c, best % 2 == 1,
+                        [&](size_t idx, int pred) {
+                            const int k = quant.Index(level[idx], pred);
+                            code.residuals.push_back(Zigzag(k));
+                            return quant.Value(k, pred);
+                        });
         }
         if (l == 0) decimated = recon;
     }
     return code;
 }
 
-raster::Texture DecodeMap(const MapCode& code, int width, int levels,
-                          const raster::Texture* previous, int maxError) {
-    int chain = 1;  // the levels of a full MIP chain of this width
-    while ((width >> chain) > 0) ++chain;
-    if (width < 1 || levels < 1 || levels > chain ||
-        code.predictors.size() != 4 * static_cast<size_t>(levels) ||
+std::vector<raster::Texture> DecodeMap(const MapCode& code, const MapShape& shape, int levels,
+                                       std::span<const raster::Texture> previous, int maxError) {
+    const bool cube = shape.kind == raster::TextureKind::Cube;
+    if (shape.width < 1 || shape.height < 1 ||
+        (cube && (shape.faces != 6 || shape.height != shape.width)) ||
+        (!cube && (shape.faces < 1 || shape.faces > 2)) || levels < 1 ||
+        levels > shape.ChainLevels() || code.predictors.size() != 4 * static_cast<size_t>(levels) ||
         code.transformed.size() != static_cast<size_t>(levels) ||
-        code.residuals.size() != PredictedBytes(width, code.transformed))
+        code.residuals.size() != PredictedBytes(shape, code.transformed))
         throw std::runtime_error("the map's code does not fit its size");
-    if (!UsablePrevious(previous, width, levels)) previous = nullptr;
+    const std::vector<Level> prev = UsablePrevious(previous, shape, levels);
+    const std::vector<Level>* before = prev.empty() ? nullptr : &prev;
     const Quantizer quant{maxError};
-    raster::Texture tex;
-    tex.kind = raster::TextureKind::Cube;
-    tex.width = tex.height = width;
+    std::vector<Level> out;
     size_t next = 0;
     Level decimated;
     for (int l = 0; l < levels; ++l) {
-        const int n = tex.LevelWidth(l);
-        if (l > 0) decimated = Decimate(decimated, tex.LevelWidth(l - 1));
-        const Bases bases = BasesAt(l, previous, &decimated);
-        Level recon(LevelBytes(width, l));
+        const LevelSize size = SizeAt(shape, l);
+        if (l > 0) decimated = Decimate(decimated, shape, l - 1);
+        const Bases bases = BasesAt(l, before, &decimated);
+        Level recon(shape.LevelBytes(l));
         if (!code.transformed[static_cast<size_t>(l)].empty()) {
-            recon = base::DecodeJ2k(code.transformed[static_cast<size_t>(l)], n, 6 * n, 4).data;
-            if (recon.size() != LevelBytes(width, l))
+            recon = base::DecodeJ2k(code.transformed[static_cast<size_t>(l)], size.w,
+                                    size.faces * size.h, 4)
+                        .data;
+            if (recon.size() != shape.LevelBytes(l))
                 throw std::runtime_error("a transformed level of the map has another size");
             if (l == 0) decimated = recon;
-            tex.levels.push_back(std::move(recon));
+            out.push_back(std::move(recon));
             continue;
         }
         for (int c = 0; c < 4; ++c) {
             const int p = code.predictors[4 * static_cast<size_t>(l) + static_cast<size_t>(c)];
             if (p >= 2 * kBases || (p / 2 != kZero && !bases.of[p / 2]))
                 throw std::runtime_error("the map names a predictor it cannot have");
-            CodeChannel(recon, bases.of[p / 2], n, c, p % 2 == 1, [&](size_t, int pred) {
+            CodeChannel(recon, bases.of[p / 2], size, c, p % 2 == 1, [&](size_t, int pred) {
                 return quant.Value(Unzigzag(code.residuals[next++]), pred);
             });
         }
         if (l == 0) decimated = recon;
-        tex.levels.push_back(std::move(recon));
+        out.push_back(std::move(recon));
     }
-    return tex;
+    return Unstacked(std::move(out), shape);
 }
 
 }  // namespace pem::pipeline

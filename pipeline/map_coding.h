@@ -2,9 +2,13 @@
 // map_coding.h — predictive coding of one PEM map's 8-bit copy (every MIP level, the bytes the
 // hardware samples), the inner code of the packed PEM (pem_pack.h).
 //
-//   MapCode code = EncodeMap(texture, previous, {});   // lossless, predictive
-//   raster::Texture t = DecodeMap(code, texture.width, texture.NumLevels(), previous, 0);
-//   // t.levels == texture.levels
+//   MapCode code = EncodeMap(map, previous, {});   // lossless, predictive
+//   std::vector<raster::Texture> t = DecodeMap(code, ShapeOf(map), levels, previous, 0);
+//   // t[c].levels == map[c].levels
+//
+// A map is its textures: a cube map, or a 2D map of one or two charts (runtime/
+// parameterization.h), coded as one image of faces: a cube's 6, a 2D map's charts, each level
+// the faces' images stacked (faces × h_l rows of w_l texels).
 //
 // Each level and channel picks the predictor that leaves the smallest residuals (PEM paper §4:
 // levels coded as residuals from decimated versions of the finest level; and across the
@@ -17,15 +21,17 @@
 // every decoded byte lies within maxError of the original; maxError 0 is lossless (residuals
 // modulo 256). The stream holds one zigzag byte per texel and channel, level by level, channel
 // by channel, face by face, row by row — for a byte codec (base/byte_codec.h) to compress.
-// With a ratio, every level whose faces are at least kMinTransformSize wide is instead coded as
-// one JPEG 2000 image (n × 6n, RGBA; base/j2k_codec.h) at that compression ratio (1: lossless),
-// the levels below the finest at twice the ratio (they weigh less in the frames: on the demo's
-// maps 16.2:1 instead of 14.5:1 against the PNG maps at the same frame PSNR), the decimated
+// With a ratio, every level whose faces are at least kMinTransformSize wide and tall is instead
+// coded as one JPEG 2000 image (w × faces·h, RGBA; base/j2k_codec.h) at that compression ratio (1:
+// lossless), the levels below the finest at twice the ratio (they weigh less in the frames: on the
+// demo's maps 16.2:1 instead of 14.5:1 against the PNG maps at the same frame PSNR), the decimated
 // predictor of the smaller levels starting from the decoded finest level.
 // Not here: files, the byte codec, the sampler (the caller sets it).
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "base/j2k_codec.h"
@@ -43,10 +49,24 @@ struct MapCode {
     std::vector<std::vector<uint8_t>> transformed;
 };
 
-// Levels with faces at least this wide are transform-coded when a ratio is given.
+// Levels with faces at least this wide (and tall) are transform-coded when a ratio is given.
 constexpr int kMinTransformSize = 8;
 
-// `previous` (may be null) must be a cube of the same width and levels to be used.
+// The shape of a map: its kind, faces (a cube's 6, a 2D map's textures) and level-0 size.
+struct MapShape {
+    raster::TextureKind kind = raster::TextureKind::Cube;
+    int faces = 6;
+    int width = 1, height = 1;
+    int LevelWidth(int level) const { return std::max(1, width >> level); }
+    int LevelHeight(int level) const { return std::max(1, height >> level); }
+    size_t LevelBytes(int level) const;  // every face, RGBA
+    int ChainLevels() const;             // the levels of a full MIP chain
+    bool operator==(const MapShape&) const = default;
+};
+// The shape of a map's textures (std::invalid_argument unless one cube, or equal 2D textures).
+MapShape ShapeOf(std::span<const raster::Texture> map);
+
+// `previous` (may be empty) must have the map's shape and levels to be used.
 // How a map is coded: the predicted levels' largest error, and the transform-coded levels'
 // compression ratio (0: none; 1: lossless; the levels below the finest at twice the ratio) and
 // wavelet (base/j2k_codec.h).
@@ -56,17 +76,17 @@ struct MapCodeOptions {
     base::J2kWavelet wavelet = base::J2kWavelet::Irreversible97;
 };
 
-MapCode EncodeMap(const raster::Texture& texture, const raster::Texture* previous,
+MapCode EncodeMap(std::span<const raster::Texture> map, std::span<const raster::Texture> previous,
                   const MapCodeOptions& options);
 
-// The decoded cube (sampler left default). std::runtime_error when the code does not fit the
-// size and levels (a corrupt or truncated pack).
-raster::Texture DecodeMap(const MapCode& code, int width, int levels,
-                          const raster::Texture* previous, int maxError);
+// The decoded map's textures (sampler left default). std::runtime_error when the code does not
+// fit the shape and levels (a corrupt or truncated pack).
+std::vector<raster::Texture> DecodeMap(const MapCode& code, const MapShape& shape, int levels,
+                                       std::span<const raster::Texture> previous, int maxError);
 
-// The bytes of the residual stream of a cube of this size and level count (every level
+// The bytes of the residual stream of a map of this shape and level count (every level
 // predicted), and of the predicted levels only.
-size_t ResidualBytes(int width, int levels);
-size_t PredictedBytes(int width, const std::vector<std::vector<uint8_t>>& transformed);
+size_t ResidualBytes(const MapShape& shape, int levels);
+size_t PredictedBytes(const MapShape& shape, const std::vector<std::vector<uint8_t>>& transformed);
 
 }  // namespace pem::pipeline

@@ -146,18 +146,26 @@ void CheckMapSize(const PemManifest& m, int size, const std::string& path) {
                                    (m.maxRes > m.res ? " to " + std::to_string(m.maxRes) : ""));
 }
 
-void CheckMapShape(const PemManifest& m, raster::TextureKind kind, int width, int height,
-                   int charts, const std::string& path) {
+raster::SamplerState MapSampler(const PemManifest& m) {
+    return runtime::LayoutSampler(runtime::LayoutOf(m.parameterization, 2), m.hardware.Sampler());
+}
+
+int CheckMapShape(const PemManifest& m, raster::TextureKind kind, int width, int height, int charts,
+                  const std::string& path) {
     const bool cube = m.parameterization == runtime::Parameterization::Cube;
     const std::string name(runtime::ParameterizationName(m.parameterization));
     if (cube != (kind == raster::TextureKind::Cube))
         throw base::InputError(
             path, std::string(cube ? "a 2D map" : "a cube map") + ", the manifest says " + name);
-    if (cube) return CheckMapSize(m, width, path);
+    if (cube) {
+        CheckMapSize(m, width, path);
+        return width;
+    }
     // Step: the layout's size (a power of two in [res, max_res]) whose textures have this shape.
     for (int size = std::max(2, m.res); size <= m.maxRes; size *= 2) {
         const runtime::MapLayout layout = runtime::LayoutOf(m.parameterization, size);
-        if (layout.width == width && layout.height == height && layout.textures == charts) return;
+        if (layout.width == width && layout.height == height && layout.textures == charts)
+            return size;
     }
     const runtime::MapLayout smallest = runtime::LayoutOf(m.parameterization, std::max(2, m.res));
     throw base::InputError(

@@ -50,11 +50,15 @@ PemManifest ReadPemManifest(const std::string& dir);
 // power of two in [res, max_res]).
 void CheckMapSize(const PemManifest& manifest, int size, const std::string& path);
 
+// The sampler state the manifest's maps are drawn with: the hardware's filters
+// (MapHardware::Sampler) with the layout's wrap modes (lat-long repeats along s).
+raster::SamplerState MapSampler(const PemManifest& manifest);
+
 // base::InputError(path, ...) unless a map of `kind`, `charts` textures (a cube: 1) of level-0
 // width x height is one of the manifest's layout (runtime/parameterization.h) at a size
-// CheckMapSize allows.
-void CheckMapShape(const PemManifest& manifest, raster::TextureKind kind, int width, int height,
-                   int charts, const std::string& path);
+// CheckMapSize allows; returns that size (LayoutOf's; a cube's face size).
+int CheckMapShape(const PemManifest& manifest, raster::TextureKind kind, int width, int height,
+                  int charts, const std::string& path);
 
 // The text of manifest.json and back, for a manifest kept elsewhere (a packed PEM, pem_pack.h):
 // `dir` is where its relative paths start, `source` the file errors name.

@@ -99,11 +99,13 @@ std::vector<std::string> OtherFiles(const std::string& pemDir) {
     return out;
 }
 
-int LargestError(const raster::Texture& a, const raster::Texture& b) {
+int LargestError(const std::vector<raster::Texture>& a, const std::vector<raster::Texture>& b) {
     int worst = 0;
-    for (size_t l = 0; l < a.levels.size(); ++l)
-        for (size_t i = 0; i < a.levels[l].size(); ++i)
-            worst = std::max(worst, std::abs(static_cast<int>(a.levels[l][i]) - b.levels[l][i]));
+    for (size_t t = 0; t < a.size(); ++t)
+        for (size_t l = 0; l < a[t].levels.size(); ++l)
+            for (size_t i = 0; i < a[t].levels[l].size(); ++i)
+                worst = std::max(worst,
+                                 std::abs(static_cast<int>(a[t].levels[l][i]) - b[t].levels[l][i]));
     return worst;
 }
 
@@ -198,6 +200,14 @@ std::string CheckedRelativePath(const std::string& rel) {
     return p.generic_string();
 }
 
+// The shape of a map of the manifest's layout at `size` (LayoutOf's; a cube's face size).
+MapShape ShapeFor(const PemManifest& m, int size) {
+    if (m.parameterization == runtime::Parameterization::Cube)
+        return {raster::TextureKind::Cube, 6, size, size};
+    const runtime::MapLayout layout = runtime::LayoutOf(m.parameterization, size);
+    return {layout.kind, layout.textures, layout.width, layout.height};
+}
+
 }  // namespace
 
 bool IsPemPack(const std::string& path) {
@@ -216,16 +226,12 @@ PackStats PackPem(const std::string& pemDir, const std::string& packFile, const 
         throw base::InputError("--max-error " + std::to_string(opt.map.maxError),
                                "must lie in [0, " + std::to_string(kMaxMapError) + "]");
     const PemManifest m = ReadPemManifest(pemDir);
-    if (m.parameterization != runtime::Parameterization::Cube)
-        throw base::InputError(pemDir + "/" + kManifestJson,
-                               "packs hold cube maps only; these maps are " +
-                                   std::string(runtime::ParameterizationName(m.parameterization)));
     const std::string packDir = fs::absolute(packFile).parent_path().string();
     PackBuilder b{opt.codec, json::object(), {}};
     PackStats stats;
     stats.samples = static_cast<int>(m.inferred.size());
     // Step 1: the maps, sample by sample, each predicted from its neighbour's decoded copy.
-    std::map<std::pair<int, std::string>, std::pair<int, raster::Texture>>
+    std::map<std::pair<int, std::string>, std::pair<int, std::vector<raster::Texture>>>
         last;  // by (group, name)
     json maps = json::array();
     const raster::SamplerState sampler = m.hardware.Sampler();
@@ -237,14 +243,17 @@ PackStats PackPem(const std::string& pemDir, const std::string& packFile, const 
                 const std::string path = MapPath(pemDir, v, g, name);
                 CheckInside(pemDir, path);
                 const infer::EnvMapF map = infer::ReadEnvMapExr(path);
-                CheckMapShape(m, map.kind, map.size, map.LevelHeight(0), map.charts, path);
-                const raster::Texture tex = infer::ToTextures8(map, sampler).front();  // a cube
+                const int size =
+                    CheckMapShape(m, map.kind, map.size, map.LevelHeight(0), map.charts, path);
+                const std::vector<raster::Texture> tex = infer::ToTextures8(map, sampler);
+                const MapShape shape = ShapeOf(tex);
+                const int levels = tex[0].NumLevels();
                 auto prev = last.find({g, name});
-                const raster::Texture* previous =
-                    prev == last.end() ? nullptr : &prev->second.second;
+                const std::span<const raster::Texture> previous =
+                    prev == last.end() ? std::span<const raster::Texture>() : prev->second.second;
                 const MapCode code = EncodeMap(tex, previous, opt.map);
-                raster::Texture decoded =
-                    DecodeMap(code, tex.width, tex.NumLevels(), previous, opt.map.maxError);
+                std::vector<raster::Texture> decoded =
+                    DecodeMap(code, shape, levels, previous, opt.map.maxError);
                 Bytes raw = code.predictors;
                 raw.insert(raw.end(), code.residuals.begin(), code.residuals.end());
                 json entry = b.Add(raw);
@@ -258,13 +267,13 @@ PackStats PackPem(const std::string& pemDir, const std::string& packFile, const 
                 entry.update({{"view", v},
                               {"group", g},
                               {"name", name},
-                              {"size", tex.width},
-                              {"levels", tex.NumLevels()},
-                              {"previous_view", previous ? prev->second.first : -1}});
+                              {"size", size},
+                              {"levels", levels},
+                              {"previous_view", previous.empty() ? -1 : prev->second.first}});
                 maps.push_back(entry);
                 stats.maps++;
                 stats.mapBytes += entry.at("bytes").get<uint64_t>();
-                stats.rawBytes += ResidualBytes(tex.width, tex.NumLevels());
+                stats.rawBytes += ResidualBytes(shape, levels);
                 stats.exrBytes += FileBytes(path);
                 stats.pngBytes += FileBytes(PreviewPath(path));
                 stats.maxError = std::max(stats.maxError, LargestError(tex, decoded));
@@ -313,19 +322,17 @@ PemPack ReadPemPack(const std::string& packFile) {
         if (p.maxError < 0 || p.maxError > kMaxMapError) throw std::runtime_error("bad max_error");
         const std::string dir = fs::absolute(packFile).parent_path().string();
         p.manifest = PemManifestFromText(h.at("manifest").get<std::string>(), dir, packFile);
-        if (p.manifest.parameterization != runtime::Parameterization::Cube)
-            throw std::runtime_error("its manifest names 2D maps; packs hold cube maps only");
-        const raster::SamplerState sampler = p.manifest.hardware.Sampler();
+        const raster::SamplerState sampler = MapSampler(p.manifest);
         for (const json& e : h.at("maps")) {
             const MapKey key = CheckedMapKey(e, p.manifest);
             const int size = e.at("size").get<int>(), levels = e.at("levels").get<int>();
             CheckMapSize(p.manifest, size, packFile);
             const int prevView = e.at("previous_view").get<int>();
-            const raster::Texture* previous = nullptr;
+            std::span<const raster::Texture> previous;
             if (prevView >= 0) {
                 auto it = p.maps.find({prevView, std::get<1>(key), std::get<2>(key)});
                 if (it == p.maps.end()) throw std::runtime_error("a map's neighbour is missing");
-                previous = &it->second;
+                previous = it->second;
             }
             const Bytes blob = ReadBlob(e, raw.payload, codec);
             const size_t np = 4 * static_cast<size_t>(std::clamp(levels, 0, 16));
@@ -338,8 +345,9 @@ PemPack ReadPemPack(const std::string& packFile) {
                     t.is_null() ? std::span<const uint8_t>() : PayloadBytes(t, raw.payload);
                 code.transformed.emplace_back(bytes.begin(), bytes.end());
             }
-            raster::Texture tex = DecodeMap(code, size, levels, previous, p.maxError);
-            tex.sampler = sampler;
+            std::vector<raster::Texture> tex =
+                DecodeMap(code, ShapeFor(p.manifest, size), levels, previous, p.maxError);
+            for (raster::Texture& t : tex) t.sampler = sampler;
             if (!p.maps.emplace(key, std::move(tex)).second)
                 throw std::runtime_error("a map appears twice");
         }
@@ -375,8 +383,8 @@ void UnpackPem(const std::string& packFile, const std::string& outDir, int threa
         for (const auto& [key, tex] : p.maps) {
             const auto& [view, group, name] = key;
             fs::create_directories(GroupDir(tmp, view, group));
-            WriteMapImages(infer::FromTextures8({&tex, 1}), {&tex, 1},
-                           MapStem(tmp, view, group, name), threads);
+            WriteMapImages(infer::FromTextures8(tex), tex, MapStem(tmp, view, group, name),
+                           threads);
         }
         // Step 2: the directory appears whole.
         fs::rename(tmp, outDir);

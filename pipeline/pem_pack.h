@@ -16,7 +16,8 @@
 //
 // File: "PEMPACK1", the header's length (8 bytes, little-endian), the header (JSON: format
 // pemref_pack, version, codec, max_error, ratio, manifest text, payload size and SHA-256, the
-// files and the maps with their blobs' offsets and sizes: the byte-coded predictors and residuals,
+// files and the maps (with their size: the manifest's layout's size parameter, a cube's face
+// size, and levels) with their blobs' offsets and sizes: the byte-coded predictors and residuals,
 // and per level the JPEG 2000 codestream or null), then the blobs. Errors: base::InputError naming
 // the file and the cause (not a pack, truncated, checksum, corrupt blob, bad map size).
 #pragma once
@@ -26,6 +27,7 @@
 #include <map>
 #include <string>
 #include <tuple>
+#include <vector>
 
 #include "base/byte_codec.h"
 #include "pipeline/map_coding.h"
@@ -55,9 +57,9 @@ struct PackStats {
 using MapKey = std::tuple<int, int, std::string>;
 
 struct PemPack {
-    PemManifest manifest;  // dir: the folder the pack lies in
-    std::map<MapKey, raster::Texture> maps;
-    std::map<std::string, std::string> files;  // relative path -> bytes
+    PemManifest manifest;                                 // dir: the folder the pack lies in
+    std::map<MapKey, std::vector<raster::Texture>> maps;  // a map's textures (MapSet::map)
+    std::map<std::string, std::string> files;             // relative path -> bytes
     std::string codec;
     int maxError = 0;
 };

@@ -22,7 +22,7 @@ namespace {
 class MapCache {
   public:
     explicit MapCache(const PemManifest& manifest)
-        : manifest_(manifest), sampler_(manifest.hardware.Sampler()) {}
+        : manifest_(manifest), sampler_(MapSampler(manifest)) {}
 
     const raster::Texture* Get(int view, int group, const std::string& name) {
         const std::string path = MapPath(manifest_.dir, view, group, name);
@@ -50,12 +50,7 @@ class MapCache {
             throw base::InputError(path, std::string("cannot read the map: ") + e.what());
         }
         CheckMapShape(manifest_, map.kind, map.size, map.LevelHeight(0), map.charts, path);
-        if (map.IsCube()) return infer::ToTextures8(map, sampler_);
-        // A 2D layout: the hardware's filters with the layout's wrap modes.
-        return infer::ToTextures8(
-            map, runtime::LayoutSampler(
-                     runtime::LayoutOf(manifest_.parameterization, std::max(2, manifest_.res)),
-                     sampler_));
+        return infer::ToTextures8(map, sampler_);
     }
 
     PemManifest manifest_;
@@ -98,10 +93,11 @@ trace::Scene LoadPemScene(const PemManifest& m, const std::string& source) {
 runtime::MapSet PackMapSet(PemPack pack, const std::string& packFile) {
     runtime::MapSet set = LoadMapSet(pack.manifest);
     set.name = packFile;
-    auto maps = std::make_shared<std::map<MapKey, raster::Texture>>(std::move(pack.maps));
+    auto maps =
+        std::make_shared<std::map<MapKey, std::vector<raster::Texture>>>(std::move(pack.maps));
     set.map = [maps](int view, int group, const std::string& name) -> const raster::Texture* {
         auto it = maps->find({view, group, name});
-        return it == maps->end() ? nullptr : &it->second;
+        return it == maps->end() ? nullptr : it->second.data();
     };
     return set;
 }

@@ -8,8 +8,10 @@
 #     masked_psnr against the trace's greedy.exr on b_R's pixels), the cube's figures beside;
 #     the static EM traced in each layout (render --parameterization) within 2 dB of the
 #     cube's, and the PEM methods refusing a layout that is not their maps';
-#  2. a 2D PEM is not packed (packs hold cube maps): one error line, no file; a manifest naming
-#     an unknown layout: one error line;
+#  2. each 2D PEM packed losslessly (predictive, and JPEG 2000 at ratio 1): the hybrid frame
+#     from the pack byte-identical to the directory's; a lossy pack (--ratio 8) renders, and
+#     unpacks to a directory of the same layout; a manifest naming an unknown layout: one error
+#     line;
 #  3. `pemref study` on the mirror sphere at a small size: study.md, study.svg, study.json with
 #     every layout and size, finite scores, map pictures that exist; impossible studies (a size
 #     or layout twice, a size that is not a power of two, an unknown layout) one error line each.
@@ -94,13 +96,28 @@ fi
 [ "$(wc -l <<<"$err")" -eq 1 ] && grep -q "holds cube maps" <<<"$err" ||
   { echo "FAIL: --parameterization against the maps' layout: got: $err"; exit 1; }
 
-# Step 2: no pack of 2D maps.
-if err=$("$pemref" pack "$work/latlong" -o "$work/l.pempack" --quiet 2>&1); then
-  echo "FAIL: a lat-long PEM was packed"; exit 1
-fi
-[ "$(wc -l <<<"$err")" -eq 1 ] && grep -q "manifest.json.*cube maps only" <<<"$err" ||
-  { echo "FAIL: pack of a 2D PEM: expected one line naming manifest.json, got: $err"; exit 1; }
-[ ! -e "$work/l.pempack" ] || { echo "FAIL: a partial pack was left"; exit 1; }
+# Step 2: packs of 2D maps.
+for p in latlong sphere paraboloid tennis; do
+  for opt in "" "--ratio 1"; do
+    # shellcheck disable=SC2086  # opt is empty or two words
+    "$pemref" pack "$work/$p" -o "$work/$p.pempack" $opt --quiet
+    "$pemref" render "$work/$p.pempack" --view sample:0 --method hybrid --threads 2 --quiet \
+        -o "$work/${p}_packed.exr"
+    cmp "$work/${p}_packed.exr" "$work/${p}_hybrid.exr" ||
+      { echo "FAIL: $p: the lossless pack ($opt) renders another frame"; exit 1; }
+    rm "$work/$p.pempack"
+  done
+done
+"$pemref" pack "$work/tennis" -o "$work/t.pempack" --ratio 8 --quiet
+"$pemref" render "$work/t.pempack" --view sample:0 --method hybrid --threads 2 --quiet \
+    -o "$work/tennis_lossy.exr"
+"$pemref" unpack "$work/t.pempack" -o "$work/tennis_unpacked" >/dev/null
+grep -q '"parameterization": "tennis"' "$work/tennis_unpacked/manifest.json" ||
+  { echo "FAIL: the unpacked tennis PEM does not name its layout"; exit 1; }
+"$pemref" render "$work/tennis_unpacked" --view sample:0 --method hybrid --threads 2 --quiet \
+    -o "$work/tennis_unpacked.exr"
+cmp "$work/tennis_unpacked.exr" "$work/tennis_lossy.exr" ||
+  { echo "FAIL: the unpacked lossy tennis PEM renders another frame than its pack"; exit 1; }
 
 # A manifest naming an unknown layout: one error line naming it.
 cp -r "$work/sphere" "$work/bad"

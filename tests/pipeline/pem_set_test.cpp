@@ -102,7 +102,7 @@ TEST(PemSet, TwoDimensionalLayouts) {
     EXPECT_EQ(t->levels[4][0], 64);                              // 0.25 * 255 = 63.75 -> 64
     EXPECT_THROW(set.map(0, 0, "layer_0"), base::InputError);    // 8 x 8 is not lat-long's
     EXPECT_THROW(set.map(0, 0, "pem_local"), base::InputError);  // a cube map
-    EXPECT_THROW(PackPem(m.dir, (dir / "p.pempack").string(), {}), base::InputError);
+    EXPECT_THROW(PackPem(m.dir, (dir / "p.pempack").string(), {}), base::InputError);  // layer_0
     EXPECT_FALSE(fs::exists(dir / "p.pempack"));
     fs::remove_all(dir);
 }
@@ -123,6 +123,15 @@ TEST(PemSet, TwoImageLayoutsAreTwoTextures) {
                   map.levels.back().end(), 0.5f);  // chart 1
     }
     infer::WriteEnvMapExr(map, MapPath(m.dir, 0, 0, "pem_distant"));
+    // Packed (lossless): the same two textures, with the layout's sampler.
+    const std::string pack = (dir / "p.pempack").string();
+    PackPem(m.dir, pack, {});
+    const std::vector<raster::Texture> packed = ReadPemPack(pack).maps.at({0, 0, "pem_distant"});
+    const runtime::MapSet fromDir = LoadMapSet(ReadPemManifest(m.dir));
+    const raster::Texture* direct = fromDir.map(0, 0, "pem_distant");
+    ASSERT_EQ(packed.size(), 2u);
+    EXPECT_EQ(packed[0], direct[0]);
+    EXPECT_EQ(packed[1], direct[1]);
     infer::EnvMapF one = map;  // one 8 x 8 chart
     one.charts = 1;
     for (int l = 0; l < 4; ++l) one.levels[static_cast<size_t>(l)].resize(one.LevelTexels(l) * 4);

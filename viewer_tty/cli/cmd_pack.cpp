@@ -40,9 +40,10 @@ void AddPackCommands(CLI::App& app) {
         ->check(CLI::IsMember({"zstd", "xz"}));
     pack->add_option("--max-error", a.maxError, "largest change of an 8-bit texel (0: lossless)")
         ->check(CLI::Range(0, pipeline::kMaxMapError));
-    pack->add_option("--ratio", a.ratio,
-                     "levels of faces >= 8 wide by JPEG 2000 at this compression ratio (0: "
-                     "predictive; 1: JPEG 2000 lossless)")
+    pack->add_option(
+            "--ratio", a.ratio,
+            "levels of faces >= 8 wide and tall by JPEG 2000 at this compression ratio (0: "
+            "predictive; 1: JPEG 2000 lossless)")
         ->check(CLI::Range(0.0, 1000.0));
     pack->add_option("--wavelet", a.wavelet,
                      "JPEG 2000 wavelet of --ratio > 1: 97 (irreversible, smaller) or 53 "
