@@ -2,12 +2,14 @@
 // error_budget.cpp — the stage-by-stage error budget (error_budget.h).
 #include "viewer_tty/report/error_budget.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <nlohmann/json.hpp>
 
 #include "base/display_image.h"
 #include "pipeline/layout.h"
+#include "runtime/parameterization.h"
 #include "trace/image.h"
 #include "viewer_tty/report/exact_fit.h"
 
@@ -124,12 +126,15 @@ void AddStage(GroupBudget* b, const std::string& stage, double psnr) {
     b->stages.push_back({stage, psnr, before - psnr});
 }
 
-// The face size of the group's layer maps at the sample (the largest, when infer chose it).
+// The size of the group's layer maps at the sample (the largest, when infer chose it): a cube's
+// face size, a 2D layout's size parameter (runtime/parameterization.h LayoutOf).
 int GroupMapResolution(const runtime::MapSet& maps, int view, const runtime::LensGroupEm& g) {
     int res = maps.res;
     for (size_t l = 0; l < g.layers.size(); ++l)
         if (const raster::Texture* t = maps.map(view, g.index, pipeline::LayerMapName(int(l))))
-            res = std::max(res, t->width);
+            for (int size = std::max(2, maps.res); size <= 2 * t->width; size *= 2)
+                if (runtime::LayoutOf(maps.parameterization, size).width == t->width)
+                    res = std::max(res, size);
     return res;
 }
 
