@@ -338,7 +338,7 @@ MapReport SolveMap(const std::vector<MapInput>& inputs, const InferJobOptions& o
     const StackedRows s = StackRows(inputs, tm.width, tm.height, tm.spp, rep.res, opt);
     rep.matrixSeconds = Since(t0);
     infer::SystemOptions systemOptions = opt.system;  // the map's textures: its charts
-    systemOptions.charts = runtime::LayoutOf(opt.parameterization, 2).textures;
+    systemOptions.charts = runtime::MapTextures(opt.parameterization);
     const infer::LinearSystem sys =
         infer::BuildSystem(s.a, s.frame, 0, s.target, opt.weights, systemOptions);
     rep.buildSeconds = Since(t0);

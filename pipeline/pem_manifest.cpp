@@ -147,6 +147,7 @@ void CheckMapSize(const PemManifest& m, int size, const std::string& path) {
 }
 
 raster::SamplerState MapSampler(const PemManifest& m) {
+    // The wrap modes are the layout's at any size.
     return runtime::LayoutSampler(runtime::LayoutOf(m.parameterization, 2), m.hardware.Sampler());
 }
 

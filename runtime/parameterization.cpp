@@ -98,13 +98,17 @@ MapLayout LayoutOf(Parameterization p, int size) {
     MapLayout l;
     l.parameterization = p;
     l.kind = p == Parameterization::Cube ? raster::TextureKind::Cube : raster::TextureKind::Tex2D;
-    const bool twoImages = p == Parameterization::Paraboloid || p == Parameterization::Tennis;
+    const bool twoImages = MapTextures(p) == 2;
     l.width = p == Parameterization::LatLong || p == Parameterization::Tennis ? 2 * size : size;
     l.height = p == Parameterization::Tennis ? size / 2 : size;
     if (p == Parameterization::LatLong) l.wrapS = raster::Wrap::Repeat;
     l.charts = p == Parameterization::Cube ? 6 : twoImages ? 2 : 1;
-    l.textures = twoImages ? 2 : 1;
+    l.textures = MapTextures(p);
     return l;
+}
+
+int MapTextures(Parameterization p) {
+    return p == Parameterization::Paraboloid || p == Parameterization::Tennis ? 2 : 1;
 }
 
 raster::SamplerState LayoutSampler(const MapLayout& layout, const raster::SamplerState& sampler) {
@@ -197,7 +201,7 @@ std::vector<raster::Pass> ToLayout(const raster::Pass& cubePass, int unit, Param
     if (p == Parameterization::Cube) return {cubePass};
     // Step: one pass per texture with the pass's state, without its geometry (not copied only
     // to be cleared).
-    const int textures = LayoutOf(p, 2).textures;
+    const int textures = MapTextures(p);
     std::vector<raster::Pass> out(static_cast<size_t>(textures));
     for (int c = 0; c < textures; ++c) {
         raster::Pass& pass = out[static_cast<size_t>(c)];

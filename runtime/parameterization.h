@@ -67,6 +67,9 @@ struct MapLayout {
 // size: a power of two >= 2 (the tennis bands are size / 2 tall).
 MapLayout LayoutOf(Parameterization p, int size);
 
+// The textures of one map of the layout at any size (LayoutOf(p, size).textures): 1 or 2.
+int MapTextures(Parameterization p);
+
 // `sampler`'s filters with the layout's wrap modes.
 raster::SamplerState LayoutSampler(const MapLayout& layout, const raster::SamplerState& sampler);
 

@@ -132,9 +132,9 @@ class FrameBatch {
           stats_(stats) {}
 
     // A frame drawing maps[k] (innermost first; the first of the map's textures, MapSet::map)
-    // on geometries[k] with coords[k]: the outermost
-    // layer replaces, the inner ones go over it. sameAs >= 0: that frame drew the same passes
-    // with another sample's maps (they are copied, not filled again).
+    // on geometries[k] with coords[k]: the outermost layer replaces, the inner ones go over it.
+    // sameAs >= 0: that frame drew the same passes with another sample's maps (they are copied,
+    // not filled again).
     int Add(const std::vector<const raster::Texture*>& maps,
             const std::vector<std::vector<glm::vec3>>& coords, const std::vector<ExitRay>& exits,
             double weight, const std::vector<const PassGeometry*>& geometries, int sameAs = -1) {
@@ -148,7 +148,7 @@ class FrameBatch {
         frame.depthClamp = true;
         frame.depth = kLensDepth;
         // A map of a two-image layout is two textures and two passes (parameterization.h).
-        const size_t perMap = static_cast<size_t>(LayoutOf(parameterization_, 2).textures);
+        const size_t perMap = static_cast<size_t>(MapTextures(parameterization_));
         frame.passes.resize(maps.size() * perMap);  // no-op when copied
         for (size_t k = maps.size(); k-- > 0;) {
             const size_t slot = maps.size() - 1 - k;
@@ -575,7 +575,7 @@ std::vector<std::vector<raster::ImageF>> Renderer::LayerImages(const raster::Cam
             frame.width = sub * camera.width, frame.height = sub * camera.height;
             frame.depthClamp = true;
             frame.depth = kLensDepth;
-            const int perMap = LayoutOf(m.maps.parameterization, 2).textures;
+            const int perMap = MapTextures(m.maps.parameterization);
             frame.textures.assign(map, map + perMap);
             frame.passes.resize(static_cast<size_t>(perMap));
             const PassGeometry& geo = pemSplit && uses.size() == 2 && k == 0 ? gg.offHull : gg.all;

@@ -155,8 +155,7 @@ std::vector<raster::Pass> LayerPass(const PassMesh& mesh, const std::vector<uint
                                     const std::vector<glm::vec3>& coords,
                                     const std::vector<ExitRay>& exits,
                                     const glm::mat4& viewProjection, const PassOptions& options) {
-    std::vector<raster::Pass> passes(
-        static_cast<size_t>(LayoutOf(options.parameterization, 2).textures));
+    std::vector<raster::Pass> passes(static_cast<size_t>(MapTextures(options.parameterization)));
     FillLayerPass(MakePassGeometry(mesh, order, viewProjection), coords, exits, options, passes);
     return passes;
 }
@@ -197,7 +196,7 @@ PassGeometry MakePassGeometry(const PassMesh& mesh, const std::vector<uint32_t>&
 void FillLayerPass(const PassGeometry& geometry, const std::vector<glm::vec3>& coords,
                    const std::vector<ExitRay>& exits, const PassOptions& options,
                    std::span<raster::Pass> passes, int threads) {
-    if (passes.size() != static_cast<size_t>(LayoutOf(options.parameterization, 2).textures))
+    if (passes.size() != static_cast<size_t>(MapTextures(options.parameterization)))
         throw std::invalid_argument("FillLayerPass: one pass per texture of the layout");
     raster::Pass* pass = &passes[0];
     pass->numUnits = 1;
