@@ -291,9 +291,9 @@ EnvMapF ReadEnvMapExr(const std::string& path) {
     int charts = 1;
     if (const auto* attr = header.findTypedAttribute<Imf::IntAttribute>(kChartsAttribute))
         charts = attr->value();
-    if (charts != 1 && (cube || charts != 2 || w < 2))
+    if (charts != 1 && (cube || charts != 2 || w < 2 || h > w / 2))
         throw std::runtime_error(path + ": " + kChartsAttribute + " " + std::to_string(charts) +
-                                 " (a 2D map has 1 or 2)");
+                                 " (a 2D map has 1, or 2 charts no taller than wide)");
     const int cw = w / charts;                                   // a chart's width
     int levels = cube ? ChainLevels(w, w) : ChainLevels(cw, h);  // the texture's MIP chain
     if (const auto* attr = header.findTypedAttribute<Imf::IntAttribute>(kLevelsAttribute))

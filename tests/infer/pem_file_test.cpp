@@ -3,6 +3,11 @@
 // chain (degenerate tail included), the face layout as a bijection, the 8-bit copy.
 #include "infer/pem_file.h"
 
+#include <ImfChannelList.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfIntAttribute.h>
+#include <ImfTiledOutputFile.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -147,6 +152,28 @@ TEST(PemFile, TwoDimensionalRoundTripExact) {
             EXPECT_EQ(level0.rgba[k], map.levels[0][k]);
             EXPECT_EQ(level0.rgba[row + k], map.levels[0][chart1 + k]);
         }
+    }
+    // A file that claims two charts it cannot hold (charts taller than wide: their MIP chain is
+    // longer than the image's would allow, or an odd count) is refused, not read past its end.
+    for (auto [w, h, charts] : {std::tuple{2, 8, 2}, std::tuple{8, 8, 2}, std::tuple{16, 4, 3}}) {
+        const std::string path =
+            OutputPath("hostile_charts_" + std::to_string(w) + "x" + std::to_string(h) + ".exr");
+        Imf::Header header(w, h);
+        header.channels().insert("R", Imf::Channel(Imf::FLOAT));
+        header.setTileDescription(Imf::TileDescription(32, 32, Imf::MIPMAP_LEVELS));
+        header.insert("pemrefCharts", Imf::IntAttribute(charts));
+        {
+            Imf::TiledOutputFile out(path.c_str(), header);
+            std::vector<float> px(static_cast<size_t>(w) * static_cast<size_t>(h), 0.5f);
+            for (int l = 0; l < out.numLevels(); ++l) {
+                Imf::FrameBuffer fb;
+                fb.insert("R", Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(px.data()),
+                                          sizeof(float), sizeof(float) * out.levelWidth(l)));
+                out.setFrameBuffer(fb);
+                out.writeTiles(0, out.numXTiles(l) - 1, 0, out.numYTiles(l) - 1, l);
+            }
+        }
+        EXPECT_THROW(ReadEnvMapExr(path), std::runtime_error) << w << "x" << h;
     }
     // Wrong level sizes and non-power-of-two shapes are refused before a file is written.
     EnvMapF bad = Random2DMap(16, 8, 2, 3);
