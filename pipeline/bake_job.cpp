@@ -4,7 +4,9 @@
 
 #include <atomic>
 #include <filesystem>
+#include <fstream>
 #include <mutex>
+#include <nlohmann/json.hpp>
 #include <vector>
 
 #include "base/atomic_file.h"
@@ -13,11 +15,68 @@
 #include "base/worker_pool.h"
 #include "pipeline/layout.h"
 #include "pipeline/pem_manifest.h"
+#include "runtime/parameterization.h"
 
 namespace pem::pipeline {
 namespace {
 
 namespace fs = std::filesystem;
+using nlohmann::json;
+
+constexpr const char* kBakeFormat = "pemref_bake";
+constexpr int kBakeVersion = 1;
+
+// The options a bake's files depend on (not jobs or threads), named as `pemref bake` spells
+// them: bake.json's "settings", its one writer and reader below.
+json BakeSettings(const BakeJobOptions& o) {
+    std::error_code ec;
+    const fs::path scene = fs::weakly_canonical(o.trace.scene, ec);
+    const runtime::MapHardware& hw = o.infer.hardware;
+    return {
+        {"scene", ec ? o.trace.scene : scene.string()},
+        {"views", o.trace.views},
+        {"size", std::to_string(o.trace.width) + "x" + std::to_string(o.trace.height)},
+        {"spp", o.trace.spp},
+        {"layers", o.trace.layers},
+        {"res", o.infer.res},
+        {"max-res", o.infer.maxRes},
+        {"parameterization", std::string(runtime::ParameterizationName(o.infer.parameterization))},
+        {"neighbours", o.infer.neighbours},
+        {"profile", hw.profile},
+        {"anisotropy", hw.maxAnisotropy},
+        {"lod-bias", hw.lodBias},
+        {"radiance-scale", hw.radianceScale}};
+}
+
+// Step 0: a new bake records its settings; a resumed one must have been started with the same
+// (else its samples would mix two settings): one error naming bake.json and the first option
+// that differs. A bake directory from before bake.json existed gets one.
+void CheckSettings(const BakeJobOptions& o) {
+    const std::string path = BakeJsonPath(o.outDir);
+    const json now = BakeSettings(o);
+    if (fs::exists(path)) {
+        json was;
+        try {
+            std::ifstream in(path);
+            was = json::parse(in);
+            if (was.at("format") != kBakeFormat || was.at("version") != kBakeVersion)
+                throw std::runtime_error("not a pemref_bake 1 file");
+            was = was.at("settings");
+        } catch (const std::exception& e) {
+            throw base::InputError(path, std::string("unreadable: ") + e.what());
+        }
+        for (const auto& [key, value] : now.items())
+            if (!was.contains(key) || was.at(key) != value)
+                throw base::InputError(
+                    path, "this bake was started with --" + key + " " +
+                              (was.contains(key) ? was.at(key).dump() : std::string("(none)")) +
+                              ", resumed with " + value.dump() +
+                              " (resume with the same options, or bake into a new directory)");
+        return;
+    }
+    const json file = {{"format", kBakeFormat}, {"version", kBakeVersion}, {"settings", now}};
+    base::WriteTextAtomic(path, file.dump(2) + "\n");
+}
 
 // Step 1: the trace, unless a finished one is there.
 TraceManifest TraceOnce(const BakeJobOptions& o) {
@@ -106,7 +165,17 @@ BakeJobResult RunBakeJob(const BakeJobOptions& o) {
     if (ec) throw base::InputError(o.outDir, "cannot create the directory: " + ec.message());
     const base::DirectoryLock lock(o.outDir);  // one bake per directory at a time
     base::RemoveTemporaries(o.outDir);
-    const TraceManifest trace = TraceOnce(o);
+    // A new bake that fails before its trace is done leaves no bake.json (nothing with data).
+    const bool fresh = !fs::exists(BakeJsonPath(o.outDir)) &&
+                       !fs::exists(BakeTraceDir(o.outDir) + "/" + kTraceJson);
+    CheckSettings(o);
+    TraceManifest trace;
+    try {
+        trace = TraceOnce(o);
+    } catch (...) {
+        if (fresh) fs::remove(BakeJsonPath(o.outDir), ec);
+        throw;
+    }
     const int n = static_cast<int>(trace.views.size());
     std::vector<int> todo;
     for (int v = 0; v < n; ++v)

@@ -6,7 +6,11 @@
 //   RunBakeJob(o);     // out/bake/trace, out/bake/pem (layout.h)
 //
 // Steps: the directory is locked (a second bake into it refuses: base/directory_lock.h);
-// temporaries a killed run left are removed; the trace (one step: its layers span every
+// temporaries a killed run left are removed; bake.json records the options the files depend on
+// (scene, views, size, spp, layers, res, max-res, parameterization, neighbours, the map
+// hardware; not jobs or threads), and a bake resumed with other ones is refused
+// (base::InputError naming bake.json and the option; a directory from before bake.json is
+// trusted and gets one); the trace (one step: its layers span every
 // viewpoint) unless trace.json exists; every sample without its sample.json, `jobs` samples at
 // a time, each written whole before its sample.json; infer.json and manifest.json over every
 // sample. The maps do not depend on `jobs` or the thread counts.

@@ -74,6 +74,10 @@ std::string BakePemDir(const std::string& bakeDir) {
     return bakeDir + "/pem";
 }
 
+std::string BakeJsonPath(const std::string& bakeDir) {
+    return bakeDir + "/" + kBakeJson;
+}
+
 void CheckInside(const std::string& dir, const std::string& path) {
     namespace fs = std::filesystem;
     std::error_code ec;

@@ -25,6 +25,7 @@ inline constexpr const char* kTraceJson = "trace.json";
 inline constexpr const char* kManifestJson = "manifest.json";
 inline constexpr const char* kInferJson = "infer.json";
 inline constexpr const char* kSampleJson = "sample.json";
+inline constexpr const char* kBakeJson = "bake.json";
 
 // "view_007".
 std::string ViewDirName(int view);
@@ -56,9 +57,10 @@ std::string LayerMapName(int layer);
 
 std::string SampleJsonPath(const std::string& pemDir, int view);
 
-// A bake directory's parts.
+// A bake directory's parts: trace/, pem/ and bake.json (the settings it was started with).
 std::string BakeTraceDir(const std::string& bakeDir);
 std::string BakePemDir(const std::string& bakeDir);
+std::string BakeJsonPath(const std::string& bakeDir);
 
 // Throws base::InputError(path, ...) unless `path`, symbolic links resolved, lies inside `dir`
 // (nothing is read or written outside the directories the user named).

@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # bake_resume.sh PEMREF SCENE — a bake killed with SIGKILL at three random moments and started
-# again each time ends with the same PEM bytes (.exr, .png) as an uninterrupted bake.
+# again each time ends with the same PEM bytes (.exr, .png) as an uninterrupted bake; a bake
+# resumed with other options (which would mix two settings in one PEM) is refused with one line
+# naming bake.json and the option, and changes nothing.
 set -euo pipefail
 pemref=$1
 scene=$2
@@ -50,4 +52,20 @@ extra=$(cd "$work/resumed" && find . \( -name '*.exr' -o -name '*.png' \) | wc -
 [ "$count" -eq "$extra" ] || { echo "FAIL: $extra files after resuming, $count expected"; exit 1; }
 if find "$work/resumed" -name '*.tmp*' | grep -q .; then echo "FAIL: temporaries left"; exit 1; fi
 [ "$interrupted" -eq 3 ] || { echo "FAIL: only $interrupted kill(s) interrupted the bake"; exit 1; }
-echo "PASS: $count files byte-identical after $interrupted interrupted run(s)"
+
+# Step 4: resumed with other options: refused, nothing changed.
+for other in "--res 64" "--parameterization tennis" "--size 64x48" "--views circle:2:10"; do
+  opts=()  # args with `other` in place of its option
+  for o in "--views circle:3:10" "--size 128x96" "--spp 1" "--res 32" "--quiet" "$other"; do
+    # shellcheck disable=SC2206  # an option and its value
+    [ "$o" != "$other" ] && [ "${o%% *}" = "${other%% *}" ] || opts+=($o)
+  done
+  if err=$("$pemref" bake "$scene" --out "$work/resumed" "${opts[@]}" 2>&1); then
+    echo "FAIL: a bake resumed with $other was accepted"; exit 1
+  fi
+  [ "$(wc -l <<<"$err")" -eq 1 ] && grep -q "bake.json: this bake was started with ${other%% *}" <<<"$err" ||
+    { echo "FAIL: resumed with $other: expected one line naming bake.json and the option, got: $err"; exit 1; }
+done
+(cd "$work/resumed" && md5sum --quiet -c "$work/full.md5")
+"$pemref" bake "$scene" --out "$work/resumed" "${args[@]}" --threads 2  # threads: not a setting
+echo "PASS: $count files byte-identical after $interrupted interrupted run(s); other options refused"

@@ -325,6 +325,7 @@ TEST(Layout, OneSpellingOfEveryPath) {
     EXPECT_EQ(GroupImagePath("t", 12, 0, LayerImageName(1, 1)), "t/view_012/group_0/layer_1_T.exr");
     EXPECT_EQ(SampleJsonPath("p", 0), "p/view_000/sample.json");
     EXPECT_EQ(PreviewPath("a/b_R.exr"), "a/b_R.png");
+    EXPECT_EQ(BakeJsonPath("out/b"), "out/b/bake.json");
 }
 
 }  // namespace
