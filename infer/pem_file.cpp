@@ -98,26 +98,20 @@ std::array<float, kChannels> CoarsestMean(const EnvMapF& map) {
     return mean;
 }
 
-// A 2D level's charts (face-major) as one image, chart c at columns [c w, (c + 1) w).
-std::vector<float> ChartsSideBySide(const std::vector<float>& level, int charts, int w, int h) {
-    std::vector<float> px(level.size());
+// A 2D level's charts between face-major order (chart after chart) and one image of them side by
+// side (chart c at columns [c w, (c + 1) w)), toward the image when `toImage`.
+std::vector<float> RearrangeCharts(const std::vector<float>& from, int charts, int w, int h,
+                                   bool toImage) {
+    std::vector<float> to(from.size());
     const size_t row = static_cast<size_t>(w) * kChannels;
     for (size_t c = 0; c < static_cast<size_t>(charts); ++c)
-        for (size_t j = 0; j < static_cast<size_t>(h); ++j)
-            std::copy_n(level.begin() + static_cast<std::ptrdiff_t>((c * h + j) * row), row,
-                        px.begin() + static_cast<std::ptrdiff_t>((j * charts + c) * row));
-    return px;
-}
-
-// The inverse: an image of `charts` w x h charts side by side as a face-major level.
-std::vector<float> ChartsOfImage(const std::vector<float>& px, int charts, int w, int h) {
-    std::vector<float> level(px.size());
-    const size_t row = static_cast<size_t>(w) * kChannels;
-    for (size_t c = 0; c < static_cast<size_t>(charts); ++c)
-        for (size_t j = 0; j < static_cast<size_t>(h); ++j)
-            std::copy_n(px.begin() + static_cast<std::ptrdiff_t>((j * charts + c) * row), row,
-                        level.begin() + static_cast<std::ptrdiff_t>((c * h + j) * row));
-    return level;
+        for (size_t j = 0; j < static_cast<size_t>(h); ++j) {
+            const size_t faceRow = (c * h + j) * row, imageRow = (j * charts + c) * row;
+            std::copy_n(from.begin() + static_cast<std::ptrdiff_t>(toImage ? faceRow : imageRow),
+                        row,
+                        to.begin() + static_cast<std::ptrdiff_t>(toImage ? imageRow : faceRow));
+        }
+    return to;
 }
 
 // The interleaved RGBA image of EXR level l (w x h).
@@ -130,7 +124,7 @@ std::vector<float> LevelImage(const EnvMapF& map, int l, int w, int h,
     }
     const std::vector<float>& level = map.levels[static_cast<size_t>(l)];
     if (!map.IsCube() && map.charts == 1) return level;  // the EXR level, rows top-down
-    if (!map.IsCube()) return ChartsSideBySide(level, map.charts, map.LevelSize(l), h);
+    if (!map.IsCube()) return RearrangeCharts(level, map.charts, map.LevelSize(l), h, true);
     const int n = map.LevelSize(l);
     for (int f = 0; f < 6; ++f)
         for (int j = 0; j < n; ++j)
@@ -308,10 +302,10 @@ EnvMapF ReadEnvMapExr(const std::string& path) {
     for (int l = 0; l < levels; ++l) {
         int lw = 0;
         std::vector<float> px = ReadLevelPixels(in, l, &lw);
-        map.levels.push_back(cube ? CubeLevel(px, lw, map.LevelSize(l))
-                             : charts > 1
-                                 ? ChartsOfImage(px, charts, map.LevelSize(l), map.LevelHeight(l))
-                                 : std::move(px));
+        map.levels.push_back(
+            cube         ? CubeLevel(px, lw, map.LevelSize(l))
+            : charts > 1 ? RearrangeCharts(px, charts, map.LevelSize(l), map.LevelHeight(l), false)
+                         : std::move(px));
     }
     return map;
 }
