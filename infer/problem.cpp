@@ -177,12 +177,12 @@ LinearSystem BuildSystem(const raster::RenderingMatrix& a, const raster::Frame& 
     // Image block: kept rows, local columns, weighted by sqrt(confidence).
     LinearSystem sys;
     sys.layout = LayoutOfTexture(tex, 0, options.charts);
-    for (int c = 1; c < sys.layout.charts; ++c)
-        if (!(frame.textures.at(static_cast<size_t>(texture + c)).width == tex.width &&
-              frame.textures.at(static_cast<size_t>(texture + c)).height == tex.height &&
-              frame.textures.at(static_cast<size_t>(texture + c)).levels.size() ==
-                  tex.levels.size()))
+    for (int c = 1; c < sys.layout.charts; ++c) {
+        const raster::Texture& chart = frame.textures.at(static_cast<size_t>(texture + c));
+        if (chart.width != tex.width || chart.height != tex.height ||
+            chart.levels.size() != tex.levels.size())
             throw std::invalid_argument("BuildSystem: a map's chart textures differ in shape");
+    }
     sys.globalFirstTexel = raster::TexelIndexer(frame.textures).LevelBase(texture, 0);
     ImageBlock img =
         SelectImageRows(a, TexelVector(frame), sys.layout, sys.globalFirstTexel, target);
