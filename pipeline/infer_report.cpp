@@ -47,21 +47,21 @@ json MapJson(const MapReport& m) {
 
 MapReport MapFromJson(const json& j) {
     MapReport m;
-    m.view = j.at("view").get<int>();
-    m.group = j.at("group").get<int>();
+    m.view = IntAt<int>(j, "view");
+    m.group = IntAt<int>(j, "group");
     m.term = j.at("term").get<std::string>();
-    m.layer = j.at("layer").get<int>();
+    m.layer = IntAt<int>(j, "layer");
     m.name = j.at("name").get<std::string>();
-    m.res = j.value("res", 0);  // absent in older directories
+    m.res = IntAtOr<int>(j, "res", 0);  // absent in older directories
     m.levelsAccessed = j.value("levels_accessed", std::vector<double>{});
-    m.rows = j.at("rows").get<int64_t>();
-    m.cols = j.at("cols").get<int64_t>();
-    m.nnz = j.at("nnz").get<int64_t>();
-    m.observedTexels = j.at("observed_texels").get<int64_t>();
-    m.filledTexels = j.at("filled_texels").get<int64_t>();
+    m.rows = IntAt<int64_t>(j, "rows");
+    m.cols = IntAt<int64_t>(j, "cols");
+    m.nnz = IntAt<int64_t>(j, "nnz");
+    m.observedTexels = IntAt<int64_t>(j, "observed_texels");
+    m.filledTexels = IntAt<int64_t>(j, "filled_texels");
     m.buildSeconds = j.at("build_seconds").get<double>();
     m.solveSeconds = j.at("solve_seconds").get<double>();
-    m.iterations = j.at("iterations").get<int>();
+    m.iterations = IntAt<int>(j, "iterations");
     m.stop = j.at("stop").get<std::string>();
     m.rmse = j.at("rmse").get<double>();
     m.rmse8 = j.at("rmse_8bit").get<double>();
@@ -87,9 +87,9 @@ json SampleJson(const SampleReport& s) {
 }
 
 SampleReport SampleFromJson(const json& j) {
-    return {j.at("view").get<int>(), j.at("seconds").get<double>(),
-            j.at("path_seconds").get<double>(), j.at("vertex_rays").get<uint64_t>(),
-            j.at("triangles").get<size_t>()};
+    return {IntAt<int>(j, "view"), j.at("seconds").get<double>(),
+            j.at("path_seconds").get<double>(), IntAt<uint64_t>(j, "vertex_rays"),
+            IntAt<size_t>(j, "triangles")};
 }
 
 json LeftOutJson(const std::vector<LeftOut>& leftOut) {
@@ -102,7 +102,7 @@ json LeftOutJson(const std::vector<LeftOut>& leftOut) {
 std::vector<LeftOut> LeftOutFromJson(const json& j) {
     std::vector<LeftOut> out;
     for (const json& l : j)
-        out.push_back({l.at("view").get<int>(), l.at("group").get<int>(),
+        out.push_back({IntAt<int>(l, "view"), IntAt<int>(l, "group"),
                        l.at("what").get<std::string>(), l.at("why").get<std::string>()});
     return out;
 }
@@ -120,7 +120,7 @@ std::vector<MapReport> MapsFromJson(const json& j) {
 }
 
 void CheckFormat(const json& j, const char* format) {
-    if (j.value("format", "") != format || j.value("version", 0) != 1)
+    if (j.value("format", "") != format || j.value("version", json()) != 1)
         throw std::runtime_error(std::string("not a ") + format + " file (version 1)");
 }
 
@@ -170,10 +170,10 @@ InferRecord ReadInferJson(const std::string& pemDir) {
             CheckFormat(j, "pemref_infer");
             InferRecord r;
             r.traceDir = j.at("trace_dir").get<std::string>();
-            r.res = j.at("res").get<int>();
-            r.threads = j.at("threads").get<int>();
-            r.jobs = j.at("jobs").get<int>();
-            r.neighbours = j.at("neighbours").get<int>();
+            r.res = IntAt<int>(j, "res");
+            r.threads = IntAt<int>(j, "threads");
+            r.jobs = IntAt<int>(j, "jobs");
+            r.neighbours = IntAt<int>(j, "neighbours");
             r.hdr = j.at("hdr").get<bool>();
             r.lambda.smooth = j.at("lambda").at("smooth").get<double>();
             r.lambda.pyramid = j.at("lambda").at("pyramid").get<double>();

@@ -7,6 +7,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "raster/profile.h"
+
 namespace pem::pipeline {
 namespace {
 
@@ -39,7 +41,7 @@ runtime::EmLayer LayerFromJson(const json& j) {
     l.shell = ShellFromJson(j.at("shell"));
     l.kind = j.at("shell").at("type").get<std::string>();
     l.radius = Finite(j.at("radius"));
-    l.records = j.at("records").get<int64_t>();
+    l.records = IntAt<int64_t>(j, "records");
     l.objects = j.at("objects").get<std::vector<std::string>>();
     l.occupancy = Finite(j.at("occupancy"));
     const double nan = std::numeric_limits<double>::quiet_NaN();
@@ -75,8 +77,8 @@ raster::Camera CameraFromJson(const json& j) {
     c.target = glm::vec3(Vec3FromJson(j.at("target")));
     c.up = glm::vec3(Vec3FromJson(j.at("up")));
     c.fovYRadians = static_cast<float>(Finite(j.at("fov_y_radians")));
-    c.width = j.at("size").at(0).get<int>();
-    c.height = j.at("size").at(1).get<int>();
+    c.width = IntFromJson<int>(j.at("size").at(0), "size");
+    c.height = IntFromJson<int>(j.at("size").at(1), "size");
     if (c.width < 1 || c.height < 1 || c.width > 16384 || c.height > 16384)
         throw std::runtime_error("camera size out of range");
     if (!(c.fovYRadians > 0.0f && c.fovYRadians < 3.14159f))
@@ -154,14 +156,24 @@ json LensGroupJson(const runtime::LensGroupEm& g) {
     return j;
 }
 
+std::string ProfileAt(const json& j, const char* key) {
+    const std::string name = j.at(key).get<std::string>();
+    try {
+        raster::ProfileNamed(name);
+    } catch (const std::invalid_argument& e) {
+        throw std::runtime_error(std::string(key) + ": " + e.what());
+    }
+    return name;
+}
+
 runtime::LensGroupEm LensGroupFromJson(const json& j, int index) {
     runtime::LensGroupEm g;
     g.index = index;
     g.objects = j.at("objects").get<std::vector<std::string>>();
     g.glass = j.at("glass").get<bool>();
     g.emOrigin = glm::vec3(Vec3FromJson(j.at("em_origin")));
-    g.records = j.at("records").get<int64_t>();
-    g.lbgIterations = j.at("lbg_iterations").get<int>();
+    g.records = IntAt<int64_t>(j, "records");
+    g.lbgIterations = IntAt<int>(j, "lbg_iterations");
     g.lbgConverged = j.at("lbg_converged").get<bool>();
     for (const json& l : j.at("layers")) g.layers.push_back(LayerFromJson(l));
     if (j.contains("pem_local_distant")) {

@@ -14,9 +14,13 @@
 
 #include <fstream>
 #include <glm/glm.hpp>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
 
 #include "base/input_error.h"
 #include "raster/camera.h"
@@ -38,6 +42,44 @@ trace::Shell ShellFromJson(const json& j);
 
 json LensGroupJson(const runtime::LensGroupEm& group);
 runtime::LensGroupEm LensGroupFromJson(const json& j, int index);
+
+// An integer of type T named `what` in messages: a JSON integer within T's range. 2.5, 1e300, a
+// string or 2^40 for an int throw std::runtime_error (nlohmann's get<int>() would truncate, wrap
+// or overflow them).
+template <class T>
+T IntFromJson(const json& j, std::string_view what) {
+    if (j.is_number_unsigned() && std::in_range<T>(j.get<uint64_t>()))
+        return static_cast<T>(j.get<uint64_t>());
+    if (j.is_number_integer() && !j.is_number_unsigned() && std::in_range<T>(j.get<int64_t>()))
+        return static_cast<T>(j.get<int64_t>());
+    const std::string found = j.is_primitive() ? j.dump().substr(0, 40) : j.type_name();
+    throw std::runtime_error(std::string(what) + ": " + found + " is not an integer in [" +
+                             std::to_string(std::numeric_limits<T>::min()) + ", " +
+                             std::to_string(std::numeric_limits<T>::max()) + "]");
+}
+
+// j[key] as IntFromJson; IntAtOr gives `fallback` where the key is absent (older files).
+template <class T>
+T IntAt(const json& j, const char* key) {
+    return IntFromJson<T>(j.at(key), key);
+}
+template <class T>
+T IntAtOr(const json& j, const char* key, T fallback) {
+    return j.contains(key) ? IntAt<T>(j, key) : fallback;
+}
+
+// j[key], the name of a hardware profile this pemref knows (raster/profile.h).
+std::string ProfileAt(const json& j, const char* key);
+
+// j[key], an array of IntFromJson.
+template <class T>
+std::vector<T> IntsAt(const json& j, const char* key) {
+    const json& a = j.at(key);
+    if (!a.is_array()) throw std::runtime_error(std::string(key) + ": not an array");
+    std::vector<T> out;
+    for (const json& v : a) out.push_back(IntFromJson<T>(v, key));
+    return out;
+}
 
 // The JSON file at path through fromJson: a missing file (`missing` says what to do), a parse
 // error or a bad value (std::runtime_error from fromJson) become one base::InputError

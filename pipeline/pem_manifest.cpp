@@ -6,7 +6,6 @@
 #include "base/input_error.h"
 #include "pipeline/json_values.h"
 #include "pipeline/layout.h"
-#include "raster/profile.h"
 
 namespace pem::pipeline {
 namespace {
@@ -58,20 +57,19 @@ PemManifest ManifestFromJson(const json& j) {
     m.sceneGiven = j.at("scene_given").get<std::string>();
     m.traceDir = j.at("trace_dir").get<std::string>();
     m.traceDirGiven = j.at("trace_dir_given").get<std::string>();
-    m.width = j.at("size").at(0).get<int>();
-    m.height = j.at("size").at(1).get<int>();
-    m.spp = j.at("spp").get<int>();
-    m.res = j.at("res").get<int>();
+    m.width = IntFromJson<int>(j.at("size").at(0), "size");
+    m.height = IntFromJson<int>(j.at("size").at(1), "size");
+    m.spp = IntAt<int>(j, "spp");
+    m.res = IntAt<int>(j, "res");
     if (j.at("size").size() != 2 || m.width < 1 || m.height < 1 || m.spp < 1)
         throw std::runtime_error("bad size or spp");
     if (m.res < 1 || m.res > 4096 || (m.res & (m.res - 1)) != 0)
         throw std::runtime_error("res " + std::to_string(m.res) + " is not a power of two");
-    m.maxRes = j.value("max_res", m.res);  // absent in older directories: every map at res
+    m.maxRes = IntAtOr<int>(j, "max_res", m.res);  // absent in older directories: every map at res
     if (m.maxRes < m.res || m.maxRes > 4096 || (m.maxRes & (m.maxRes - 1)) != 0)
         throw std::runtime_error("max_res " + std::to_string(m.maxRes) +
                                  " is not a power of two in [res, 4096]");
-    m.hardware.profile = j.at("profile").get<std::string>();
-    raster::ProfileNamed(m.hardware.profile);                    // throws for an unknown profile
+    m.hardware.profile = ProfileAt(j, "profile");
     m.hardware.maxAnisotropy = j.value("max_anisotropy", 1.0f);  // absent in older directories: off
     if (!(m.hardware.maxAnisotropy >= 1.0f && m.hardware.maxAnisotropy <= 16.0f))
         throw std::runtime_error("max_anisotropy must lie in [1, 16]");
@@ -88,12 +86,12 @@ PemManifest ManifestFromJson(const json& j) {
     m.parameterization = *parameterization;
     if (m.parameterization != runtime::Parameterization::Cube && m.res < 2)
         throw std::runtime_error("res must be >= 2 for a 2D layout");
-    m.fullTreeDepth = j.at("full_tree_depth").get<int>();
+    m.fullTreeDepth = IntAt<int>(j, "full_tree_depth");
     m.minWeight = j.at("min_weight").get<double>();
     m.fresnel = j.at("fresnel").get<std::string>();
     m.hdr = j.at("hdr").get<bool>();
     for (const json& v : j.at("views")) m.views.push_back(CameraFromJson(v));
-    m.inferred = j.at("inferred_views").get<std::vector<int>>();
+    m.inferred = IntsAt<int>(j, "inferred_views");
     int index = 0;
     for (const json& g : j.at("lens_groups")) m.groups.push_back(LensGroupFromJson(g, index++));
     if (m.views.empty() || m.inferred.empty()) throw std::runtime_error("no viewpoint samples");

@@ -16,6 +16,7 @@
 #include "base/sha256.h"
 #include "infer/env_map.h"
 #include "infer/pem_file.h"
+#include "pipeline/json_values.h"
 #include "pipeline/layout.h"
 #include "pipeline/map_coding.h"
 #include "pipeline/map_files.h"
@@ -52,8 +53,8 @@ json BlobJson(uint64_t offset, size_t bytes, size_t rawBytes) {
 
 // The bytes of the payload an entry of the header names, as stored.
 std::span<const uint8_t> PayloadBytes(const json& entry, const Bytes& payload) {
-    const uint64_t offset = entry.at("offset").get<uint64_t>();
-    const uint64_t bytes = entry.at("bytes").get<uint64_t>();
+    const uint64_t offset = IntAt<uint64_t>(entry, "offset");
+    const uint64_t bytes = IntAt<uint64_t>(entry, "bytes");
     if (offset > payload.size() || bytes > payload.size() - offset)
         throw std::runtime_error("a blob lies outside the payload");
     return std::span(payload).subspan(offset, bytes);
@@ -61,7 +62,7 @@ std::span<const uint8_t> PayloadBytes(const json& entry, const Bytes& payload) {
 
 // The same, decompressed by the pack's byte codec.
 Bytes ReadBlob(const json& entry, const Bytes& payload, base::ByteCodec codec) {
-    const uint64_t raw = entry.at("raw_bytes").get<uint64_t>();
+    const uint64_t raw = IntAt<uint64_t>(entry, "raw_bytes");
     if (raw > (uint64_t{1} << 32)) throw std::runtime_error("a blob is too large");
     return base::Decompress(codec, PayloadBytes(entry, payload), raw);
 }
@@ -165,7 +166,7 @@ void CheckHeader(const RawPack& raw) {
     if (h.at("version") != kVersion)
         throw std::runtime_error("version " + h.at("version").dump() + ", expected " +
                                  std::to_string(kVersion));
-    if (h.at("payload_bytes").get<uint64_t>() != raw.payload.size())
+    if (IntAt<uint64_t>(h, "payload_bytes") != raw.payload.size())
         throw std::runtime_error("truncated: the payload is " + std::to_string(raw.payload.size()) +
                                  " bytes, the header says " + h.at("payload_bytes").dump());
     if (base::Sha256Hex(raw.payload.data(), raw.payload.size()) !=
@@ -176,7 +177,7 @@ void CheckHeader(const RawPack& raw) {
 // A map of the header that the manifest has: an inferred sample, an existing group, a name of
 // letters, digits and '_' (it becomes a file name).
 MapKey CheckedMapKey(const json& e, const PemManifest& m) {
-    const MapKey key{e.at("view").get<int>(), e.at("group").get<int>(),
+    const MapKey key{IntAt<int>(e, "view"), IntAt<int>(e, "group"),
                      e.at("name").get<std::string>()};
     const auto& [view, group, name] = key;
     if (std::find(m.inferred.begin(), m.inferred.end(), view) == m.inferred.end())
@@ -272,7 +273,7 @@ PackStats PackPem(const std::string& pemDir, const std::string& packFile, const 
                               {"previous_view", previous.empty() ? -1 : prev->second.first}});
                 maps.push_back(entry);
                 stats.maps++;
-                stats.mapBytes += entry.at("bytes").get<uint64_t>();
+                stats.mapBytes += IntAt<uint64_t>(entry, "bytes");
                 stats.rawBytes += ResidualBytes(shape, levels);
                 stats.exrBytes += FileBytes(path);
                 stats.pngBytes += FileBytes(PreviewPath(path));
@@ -318,16 +319,16 @@ PemPack ReadPemPack(const std::string& packFile) {
         const json& h = raw.header;
         const base::ByteCodec codec = base::ByteCodecNamed(h.at("codec").get<std::string>());
         p.codec = base::ByteCodecName(codec);
-        p.maxError = h.at("max_error").get<int>();
+        p.maxError = IntAt<int>(h, "max_error");
         if (p.maxError < 0 || p.maxError > kMaxMapError) throw std::runtime_error("bad max_error");
         const std::string dir = fs::absolute(packFile).parent_path().string();
         p.manifest = PemManifestFromText(h.at("manifest").get<std::string>(), dir, packFile);
         const raster::SamplerState sampler = MapSampler(p.manifest);
         for (const json& e : h.at("maps")) {
             const MapKey key = CheckedMapKey(e, p.manifest);
-            const int size = e.at("size").get<int>(), levels = e.at("levels").get<int>();
+            const int size = IntAt<int>(e, "size"), levels = IntAt<int>(e, "levels");
             CheckMapSize(p.manifest, size, packFile);
-            const int prevView = e.at("previous_view").get<int>();
+            const int prevView = IntAt<int>(e, "previous_view");
             std::span<const raster::Texture> previous;
             if (prevView >= 0) {
                 auto it = p.maps.find({prevView, std::get<1>(key), std::get<2>(key)});

@@ -26,9 +26,9 @@ json RaysJson(const trace::RayCounts& c) {
 
 trace::RayCounts RaysFromJson(const json& j) {
     trace::RayCounts c;
-    c.primary = j.at("primary").get<uint64_t>();
-    c.secondary = j.at("secondary").get<uint64_t>();
-    c.shadow = j.at("shadow").get<uint64_t>();
+    c.primary = IntAt<uint64_t>(j, "primary");
+    c.secondary = IntAt<uint64_t>(j, "secondary");
+    c.shadow = IntAt<uint64_t>(j, "shadow");
     return c;
 }
 
@@ -42,7 +42,7 @@ trace::ImageError ErrorFromJson(const json& j) {
     e.rmse = j.at("rmse").get<double>();
     e.psnr = j.at("psnr_db").is_null() ? std::numeric_limits<double>::infinity()
                                        : j.at("psnr_db").get<double>();
-    e.pixels = j.at("pixels").get<size_t>();
+    e.pixels = IntAt<size_t>(j, "pixels");
     return e;
 }
 
@@ -119,19 +119,19 @@ TraceManifest ManifestFromJson(const json& j) {
     m.scene = j.at("scene").get<std::string>();
     m.sceneGiven = j.at("scene_given").get<std::string>();
     if (j.at("size").size() != 2) throw std::runtime_error("size is not [width, height]");
-    m.width = j.at("size").at(0).get<int>();
-    m.height = j.at("size").at(1).get<int>();
-    m.spp = j.at("spp").get<int>();
+    m.width = IntFromJson<int>(j.at("size").at(0), "size");
+    m.height = IntFromJson<int>(j.at("size").at(1), "size");
+    m.spp = IntAt<int>(j, "spp");
     if (m.width < 1 || m.height < 1 || m.spp < 1) throw std::runtime_error("bad size or spp");
-    m.threads = j.at("threads").get<int>();
-    m.fullTreeDepth = j.at("full_tree_depth").get<int>();
+    m.threads = IntAt<int>(j, "threads");
+    m.fullTreeDepth = IntAt<int>(j, "full_tree_depth");
     m.minWeight = j.at("min_weight").get<double>();
     m.fresnel = j.at("fresnel").get<std::string>();
     if (m.fresnel != "exact" && m.fresnel != "schlick") throw std::runtime_error("unknown fresnel");
     m.embreeConfig = j.at("embree_config").get<std::string>();
     m.seconds = j.at("seconds").get<double>();
     m.bvhSeconds = j.at("bvh_seconds").get<double>();
-    m.triangles = j.at("triangles").get<size_t>();
+    m.triangles = IntAt<size_t>(j, "triangles");
     m.rays = RaysFromJson(j.at("rays_by_kind"));
     for (const json& v : j.at("views")) m.views.push_back(ViewFromJson(v));
     int index = 0;

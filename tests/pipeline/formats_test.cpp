@@ -234,6 +234,38 @@ TEST(PemManifest, HardwareRoundTripsAndImpossibleAnisotropyIsRefused) {
     fs::remove_all(dir);
 }
 
+// Integers that are not (2.5, 1e300, 2^40 for an int, a string) and profiles this pemref does not
+// know: one line naming the file and the key, never a wrapped value or an escaping exception.
+TEST(PemManifest, NonIntegersAndUnknownProfilesAreRefusedNamingTheKey) {
+    const fs::path dir = FreshDir("pem_manifest_ints");
+    const TraceManifest t = SmallTrace(dir, 1);
+    PemManifest m = PemManifestFor(t, (dir / "pem").string(), 32, false, {});
+    fs::create_directories(m.dir);
+    WritePemManifest(m);
+    const std::string path = (fs::path(m.dir) / kManifestJson).string();
+    const json good = json::parse(ReadFile(path));
+    const auto refused = [&](const char* key, const json& value, size_t index = 0) {
+        json bad = good;
+        json& slot = bad.at(key).is_array() ? bad.at(key).at(index) : bad.at(key);
+        slot = value;
+        WriteFile(path, bad.dump(2));
+        const std::string error = ErrorOf([&] { ReadPemManifest(m.dir); });
+        EXPECT_EQ(error.rfind(path + ": ", 0), 0u) << key << " = " << value.dump();
+        EXPECT_NE(error.find(key), std::string::npos) << error;
+    };
+    for (const json& v :
+         {json(1e300), json(32.5), json(-1e300), json(int64_t{1} << 40), json("32")})
+        refused("res", v);
+    refused("max_res", json(1e300));
+    refused("size", json(int64_t{1} << 33), 0);
+    refused("spp", json(-2.5e10));
+    refused("inferred_views", json(1e300), 0);
+    refused("profile", json("llvmpipx"));
+    WriteFile(path, good.dump(2));
+    EXPECT_EQ(ReadPemManifest(m.dir).res, 32);
+    fs::remove_all(dir);
+}
+
 TEST(PemManifest, LodBiasRoundTripsWithinItsRange) {
     const fs::path dir = FreshDir("pem_manifest_lod_bias");
     const TraceManifest t = SmallTrace(dir, 1);

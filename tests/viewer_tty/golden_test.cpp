@@ -11,6 +11,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 
 #include "base/input_error.h"
@@ -144,6 +145,10 @@ TEST(Suite, BadSuiteFilesNameTheFileAndTheEntry) {
           R"({"format": "pemref_golden_suite", "version": 1,
               "tests": [{"name": "a", "case": "x.json", "fuzzy": [300, 1]}]})",
           R"({"format": "pemref_golden_suite", "version": 1,
+              "tests": [{"name": "a", "case": "x.json", "fuzzy": [2.5, 1]}]})",
+          R"({"format": "pemref_golden_suite", "version": 1,
+              "tests": [{"name": "a", "case": "x.json", "spp": 1e300}]})",
+          R"({"format": "pemref_golden_suite", "version": 1,
               "tests": [{"name": "../a", "case": "x.json"}]})",
           R"({"format": "other", "version": 1})", "{"}) {
         std::ofstream(dir / "suite.json") << text;
@@ -231,6 +236,15 @@ TEST(GoldenJob, MissingGoldenPngOrOtherProfileCannotRun) {
     EXPECT_THROW(Check(suite.string(), out.string(), o), base::InputError);
     o.profile.clear();
     fs::remove(out / "quad32.png");
+    EXPECT_THROW(Check(suite.string(), out.string(), o), base::InputError);
+    // A golden.json naming a profile this pemref does not know.
+    fs::remove_all(out);
+    Generate(suite.string(), out.string(), o);
+    std::ifstream in(out / "golden.json");
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const size_t at = text.find("\"llvmpipe\"");
+    ASSERT_NE(at, std::string::npos);
+    std::ofstream(out / "golden.json") << text.replace(at, 10, "\"llvmpipx\"");
     EXPECT_THROW(Check(suite.string(), out.string(), o), base::InputError);
     fs::remove_all(tmp);
 }

@@ -38,17 +38,19 @@ void WriteGoldenFile(const GoldenRecord& r) {
 GoldenRecord ReadGoldenFile(const std::string& dir) {
     GoldenRecord r = pipeline::ReadJsonFile(
         dir + "/golden.json", "run pemref golden generate first", [](const json& j) {
-            if (j.value("format", "") != "pemref_golden" || j.value("version", 0) != 1)
+            if (j.value("format", "") != "pemref_golden" || j.value("version", json()) != 1)
                 throw std::runtime_error("not a pemref_golden file (version 1)");
             GoldenRecord rec;
-            rec.profile = j.at("profile").get<std::string>();
+            rec.profile = pipeline::ProfileAt(j, "profile");
             rec.model = j.at("model").get<std::string>();
             rec.pemref = j.at("pemref").get<std::string>();
             for (const json& t : j.at("tests")) {
-                GoldenEntry e{
-                    t.at("name").get<std::string>(),   t.at("png").get<std::string>(),
-                    t.at("sha256").get<std::string>(), t.at("input_sha256").get<std::string>(),
-                    t.at("size").at(0).get<int>(),     t.at("size").at(1).get<int>()};
+                GoldenEntry e{t.at("name").get<std::string>(),
+                              t.at("png").get<std::string>(),
+                              t.at("sha256").get<std::string>(),
+                              t.at("input_sha256").get<std::string>(),
+                              pipeline::IntFromJson<int>(t.at("size").at(0), "size"),
+                              pipeline::IntFromJson<int>(t.at("size").at(1), "size")};
                 if (e.png.find("..") != std::string::npos || e.png.find('/') != std::string::npos)
                     throw std::runtime_error("test " + e.name + ": png must be a file name");
                 rec.tests.push_back(e);

@@ -9,6 +9,7 @@
 #include <set>
 
 #include "base/input_error.h"
+#include "pipeline/json_values.h"
 
 namespace pem::golden {
 namespace {
@@ -32,21 +33,24 @@ GoldenTest::Kind KindOf(const json& t) {
 void ReadSettings(const json& t, GoldenTest* g) {
     if (t.contains("fuzzy")) {
         const json& f = t.at("fuzzy");
-        if (!f.is_array() || f.size() != 2 || f[0].get<int>() < 0 || f[0].get<int>() > 255 ||
-            f[1].get<long long>() < 0)
+        if (!f.is_array() || f.size() != 2)
             throw std::runtime_error("fuzzy must be [maxDifference 0..255, pixels >= 0]");
-        g->fuzzy = {f[0].get<int>(), f[1].get<size_t>()};
+        g->fuzzy = {pipeline::IntFromJson<int>(f[0], "fuzzy"),
+                    pipeline::IntFromJson<size_t>(f[1], "fuzzy")};
+        if (g->fuzzy.maxDifference < 0 || g->fuzzy.maxDifference > 255)
+            throw std::runtime_error("fuzzy must be [maxDifference 0..255, pixels >= 0]");
     }
     if (t.contains("bounds_lsb")) {
-        g->boundsLsb = t.at("bounds_lsb").get<int>();
+        g->boundsLsb = pipeline::IntAt<int>(t, "bounds_lsb");
         if (*g->boundsLsb < 0 || *g->boundsLsb > 255) throw std::runtime_error("bad bounds_lsb");
     }
     if (t.contains("size")) {
-        g->width = t.at("size").at(0).get<int>(), g->height = t.at("size").at(1).get<int>();
+        g->width = pipeline::IntFromJson<int>(t.at("size").at(0), "size"),
+        g->height = pipeline::IntFromJson<int>(t.at("size").at(1), "size");
         if (g->width < 1 || g->height < 1 || g->width > 4096 || g->height > 4096)
             throw std::runtime_error("size out of range");
     }
-    g->spp = t.value("spp", 1);
+    g->spp = pipeline::IntAtOr<int>(t, "spp", 1);
     if (g->spp < 1 || g->spp > 16) throw std::runtime_error("spp out of range");
 }
 
@@ -83,7 +87,7 @@ std::vector<GoldenTest> ReadSuiteJson(const std::string& dir) {
     json j;
     try {
         j = json::parse(f);
-        if (j.value("format", "") != "pemref_golden_suite" || j.value("version", 0) != 1)
+        if (j.value("format", "") != "pemref_golden_suite" || j.value("version", json()) != 1)
             throw std::runtime_error("not a pemref_golden_suite file (version 1)");
     } catch (const std::exception& e) {
         throw base::InputError(path, e.what());
