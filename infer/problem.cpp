@@ -133,33 +133,33 @@ std::vector<int32_t> ActiveTexels(const CsrMatrix& image, const TexelLayout& lay
     return index;
 }
 
-// Rows whose columns are all active, with compact columns.
-CsrMatrix RestrictColumns(const CsrMatrix& m, const std::vector<int32_t>& index, int64_t cols) {
-    CsrMatrix out;
-    out.cols = cols;
-    out.rowPtr.reserve(m.rowPtr.size());  // at most every row, every entry
-    out.col.reserve(m.col.size());
-    out.val.reserve(m.val.size());
-    std::vector<uint32_t> rc;
-    std::vector<double> rv;
-    for (int64_t r = 0; r < m.rows; ++r) {
-        rc.clear();
-        rv.clear();
-        bool keep = true;
-        for (int64_t k = m.rowPtr[static_cast<size_t>(r)]; k < m.rowPtr[static_cast<size_t>(r) + 1];
-             ++k) {
-            const uint32_t c = m.col[static_cast<size_t>(k)];
+// In place: the rows whose columns are all active, with compact columns (each kept entry moves to
+// an index no later than its own, so one pass over the storage does it).
+void RestrictColumns(CsrMatrix* m, const std::vector<int32_t>& index, int64_t cols) {
+    size_t at = 0;
+    int64_t kept = 0;
+    for (int64_t r = 0; r < m->rows; ++r) {
+        const auto k0 = static_cast<size_t>(m->rowPtr[static_cast<size_t>(r)]);
+        const auto k1 = static_cast<size_t>(m->rowPtr[static_cast<size_t>(r) + 1]);
+        const size_t start = at;
+        for (size_t k = k0; k < k1; ++k) {
+            const uint32_t c = m->col[k];
             const int32_t t = index[c / kChannels];
             if (t < 0) {
-                keep = false;
+                at = start;  // the row is dropped
                 break;
             }
-            rc.push_back(static_cast<uint32_t>(t) * kChannels + c % kChannels);
-            rv.push_back(m.val[static_cast<size_t>(k)]);
+            m->col[at] = static_cast<uint32_t>(t) * kChannels + c % kChannels;
+            m->val[at++] = m->val[k];
         }
-        if (keep) out.AddRow(rc, rv);
+        if (at > start || k0 == k1)
+            m->rowPtr[static_cast<size_t>(++kept)] = static_cast<int64_t>(at);
     }
-    return out;
+    m->rows = kept;
+    m->cols = cols;
+    m->rowPtr.resize(static_cast<size_t>(kept) + 1);
+    m->col.resize(at);
+    m->val.resize(at);
 }
 
 }  // namespace
@@ -200,7 +200,7 @@ LinearSystem BuildSystem(const raster::RenderingMatrix& a, const raster::Frame& 
         const std::vector<int32_t> index =
             ActiveTexels(img.a, sys.layout, options.activeRings, &sys.active);
         cols = static_cast<int64_t>(sys.active.size()) * kChannels;
-        img.a = RestrictColumns(img.a, index, cols);
+        RestrictColumns(&img.a, index, cols);
         if (weights.smooth > 0) smooth = SmoothnessRows(sys.layout, sys.active, index);
         if (weights.pyramid > 0) pyramid = PyramidRows(sys.layout, sys.active, index);
         if (weights.prior > 0) prior = PriorRows(sys.layout, sys.active, index);
@@ -209,16 +209,16 @@ LinearSystem BuildSystem(const raster::RenderingMatrix& a, const raster::Frame& 
         if (weights.pyramid > 0) pyramid = PyramidRows(sys.layout, cols);
         if (weights.prior > 0) prior = PriorRows(sys.layout, cols);
     }
-    std::vector<RowBlock> blocks{{&img.a, 1.0, &img.sqrtWeight}};
+    sys.imageRows = img.a.rows;
+    std::vector<RowBlock> blocks;
     if (weights.smooth > 0) blocks.push_back({&smooth, std::sqrt(weights.smooth), nullptr});
     if (weights.pyramid > 0) blocks.push_back({&pyramid, std::sqrt(weights.pyramid), nullptr});
     if (weights.prior > 0) blocks.push_back({&prior, std::sqrt(weights.prior), nullptr});
-    CsrMatrix k = StackRows(blocks);
+    CsrMatrix k = StackRows(std::move(img.a), 1.0, &img.sqrtWeight, blocks);
 
     // Right-hand side in the same row order.
-    sys.imageRows = img.a.rows;
     sys.h.assign(static_cast<size_t>(k.rows), 0.0);
-    for (int64_t r = 0; r < img.a.rows; ++r)
+    for (int64_t r = 0; r < sys.imageRows; ++r)
         sys.h[static_cast<size_t>(r)] =
             img.sqrtWeight[static_cast<size_t>(r)] * img.rhs[static_cast<size_t>(r)];
     if (weights.prior > 0) {

@@ -61,23 +61,40 @@ void Multiply(const CsrMatrix& a, const Vector& x, Vector* y, int threads) {
 }
 
 CsrMatrix StackRows(const std::vector<RowBlock>& blocks) {
-    CsrMatrix m;
-    if (blocks.empty()) return m;
-    m.cols = blocks.front().matrix->cols;
-    size_t rows = 0, entries = 0;
-    for (const RowBlock& b : blocks) {
+    if (blocks.empty()) return CsrMatrix{};
+    const RowBlock& head = blocks.front();
+    return StackRows(CsrMatrix(*head.matrix), head.weight, head.rowWeight,
+                     std::vector<RowBlock>(blocks.begin() + 1, blocks.end()));
+}
+
+CsrMatrix StackRows(CsrMatrix&& first, double weight, const Vector* rowWeight,
+                    const std::vector<RowBlock>& rest) {
+    CsrMatrix m = std::move(first);
+    const auto checkWeights = [](const CsrMatrix& b, const Vector* w) {
+        if (w && static_cast<int64_t>(w->size()) != b.rows)
+            throw std::invalid_argument("StackRows: row weights");
+    };
+    checkWeights(m, rowWeight);
+    size_t rows = static_cast<size_t>(m.rows), entries = m.col.size();
+    for (const RowBlock& b : rest) {
         if (b.matrix->cols != m.cols)
             throw std::invalid_argument("StackRows: column counts differ");
-        if (b.rowWeight && static_cast<int64_t>(b.rowWeight->size()) != b.matrix->rows)
-            throw std::invalid_argument("StackRows: row weights");
+        checkWeights(*b.matrix, b.rowWeight);
         rows += static_cast<size_t>(b.matrix->rows), entries += b.matrix->col.size();
     }
-    // Sized once, filled block by block: columns copied, values scaled by the row's weight.
+    // The first block scaled in place: each value by its row's weight.
+    for (int64_t r = 0; r < m.rows; ++r) {
+        const double w = weight * (rowWeight ? (*rowWeight)[static_cast<size_t>(r)] : 1.0);
+        const auto k0 = static_cast<size_t>(m.rowPtr[static_cast<size_t>(r)]);
+        const auto k1 = static_cast<size_t>(m.rowPtr[static_cast<size_t>(r) + 1]);
+        for (size_t k = k0; k < k1; ++k) m.val[k] = w * m.val[k];
+    }
+    // The others appended, sized once: columns copied, values scaled by the row's weight.
+    size_t row = static_cast<size_t>(m.rows), at = m.col.size();
     m.rowPtr.resize(rows + 1);
     m.col.resize(entries);
     m.val.resize(entries);
-    size_t row = 0, at = 0;
-    for (const RowBlock& b : blocks) {
+    for (const RowBlock& b : rest) {
         const CsrMatrix& s = *b.matrix;
         std::copy(s.col.begin(), s.col.end(), m.col.begin() + static_cast<std::ptrdiff_t>(at));
         for (int64_t r = 0; r < s.rows; ++r) {

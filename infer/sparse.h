@@ -57,6 +57,10 @@ struct RowBlock {
 
 // [w0 W0 B0; w1 W1 B1; ...]: all blocks have the same column count.
 CsrMatrix StackRows(const std::vector<RowBlock>& blocks);
+// The same with the first block's matrix consumed: its storage becomes the result's (scaled in
+// place, the other blocks appended), so the largest block is not copied.
+CsrMatrix StackRows(CsrMatrix&& first, double weight, const Vector* rowWeight,
+                    const std::vector<RowBlock>& rest);
 
 // [B0 B1 ...]: all blocks have the same row count; columns of block k follow those of k-1.
 CsrMatrix StackColumns(const std::vector<const CsrMatrix*>& blocks);
