@@ -142,35 +142,6 @@ std::vector<uint32_t> CoveredCells(const MapInput& in) {
     return cells;
 }
 
-// The rendering matrix's rows of the listed subpixels (4 per subpixel, in the list's order).
-raster::RenderingMatrix KeepRows(const raster::RenderingMatrix& a,
-                                 const std::vector<uint32_t>& cells) {
-    raster::RenderingMatrix out;
-    out.rows = 4 * static_cast<int64_t>(cells.size());
-    out.cols = a.cols;
-    size_t taps = 0;
-    for (uint32_t cell : cells)
-        taps += static_cast<size_t>(a.rowPtr[4 * size_t{cell} + 4] - a.rowPtr[4 * size_t{cell}]);
-    out.col.reserve(taps);
-    out.val.reserve(taps);
-    out.rowPtr.reserve(4 * cells.size() + 1);
-    out.offset.reserve(4 * cells.size());
-    out.rendered.reserve(4 * cells.size());
-    out.rowPtr.push_back(0);
-    for (uint32_t cell : cells)
-        for (size_t r = 4 * size_t{cell}; r < 4 * size_t{cell} + 4; ++r) {
-            const auto first = static_cast<size_t>(a.rowPtr[r]);
-            const auto last = static_cast<size_t>(a.rowPtr[r + 1]);
-            out.col.insert(out.col.end(), a.col.begin() + first, a.col.begin() + last);
-            out.val.insert(out.val.end(), a.val.begin() + first, a.val.begin() + last);
-            out.rowPtr.push_back(static_cast<int64_t>(out.col.size()));
-            out.offset.push_back(a.offset[r]);
-            out.rendered.push_back(a.rendered[r]);
-        }
-    for (uint32_t cell : cells) out.fragments.push_back(a.fragments[cell]);
-    return out;
-}
-
 // Target rows of the listed subpixels, 4 each: the layer un-premultiplied by coverage, RGB in
 // the maps' units (radiance / scale), clamped into [0, 1] for 8-bit maps (what they can reach);
 // weight · coverage.
@@ -216,7 +187,7 @@ StackedRows StackRows(const std::vector<MapInput>& inputs, int w, int h, int k, 
                                        opt.parameterization, inputs[i]);
         std::vector<uint32_t> cells = CoveredCells(inputs[i]);
         raster::RenderingMatrix a =
-            KeepRows(raster::BuildRenderingMatrix(raster::PreparedFrame(f), ro), cells);
+            raster::BuildRenderingMatrix(raster::PreparedFrame(f), ro, &cells);
         AppendTarget(inputs[i], cells, static_cast<double>(opt.hardware.radianceScale), opt.hdr,
                      &s.target);
         if (i == 0) {
@@ -252,7 +223,7 @@ std::vector<double> LevelsAccessed(const std::vector<MapInput>& inputs, int w, i
         const raster::TexelIndexer index(f.textures);
         const std::vector<uint32_t> cells = CoveredCells(in);
         const raster::RenderingMatrix a =
-            KeepRows(raster::BuildRenderingMatrix(raster::PreparedFrame(f), ro), cells);
+            raster::BuildRenderingMatrix(raster::PreparedFrame(f), ro, &cells);
         share.resize(f.textures[0].levels.size(), 0.0);
         for (size_t c = 0; c < cells.size(); ++c) {  // the red row of each subpixel
             const auto first = static_cast<size_t>(a.rowPtr[4 * c]);

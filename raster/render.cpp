@@ -284,34 +284,37 @@ void FinishResult(const RenderOptions& options, RenderResult* r) {
             UnormFromFloat(r->imageF.rgba[i], options.rounding == UnormRounding::HalfEven);
 }
 
-// CSR from the per-pixel taps: each pixel's taps sorted by texel, then per channel c the row of
-// columns 4 * texel + c, duplicate texels summed in sorted order. Pixels are independent, so
-// ranges of them run in parallel (sort and count, then fill); each pixel freed once copied.
-void RowsToCsr(MatrixRows* rows, RenderingMatrix* m, int threads) {
-    const auto n = static_cast<int64_t>(rows->size());
+// CSR from the per-pixel taps of the kept pixels (the i-th kept pixel is pixelOf(i)): each pixel's
+// taps sorted by texel, then per channel c the row of columns 4 * texel + c, duplicate texels
+// summed in sorted order. Pixels are independent, so ranges of them run in parallel (sort and
+// count, then fill); each pixel freed once copied.
+template <class PixelOf>
+void RowsToCsr(MatrixRows* rows, size_t kept, const PixelOf& pixelOf, RenderingMatrix* m,
+               int threads) {
+    const auto n = static_cast<int64_t>(kept);
     const auto byTexel = [](const MatrixTap& a, const MatrixTap& b) { return a.texel < b.texel; };
     // Step 1: each pixel's taps sorted, its distinct texels counted.
-    std::vector<uint32_t> distinct(rows->size(), 0);
-    base::ForRanges(n, threads, 4096, [&](int64_t p0, int64_t p1) {
-        for (auto p = static_cast<size_t>(p0); p < static_cast<size_t>(p1); ++p) {
-            std::vector<MatrixTap>& row = (*rows)[p];
+    std::vector<uint32_t> distinct(kept, 0);
+    base::ForRanges(n, threads, 4096, [&](int64_t i0, int64_t i1) {
+        for (auto i = static_cast<size_t>(i0); i < static_cast<size_t>(i1); ++i) {
+            std::vector<MatrixTap>& row = (*rows)[pixelOf(i)];
             std::sort(row.begin(), row.end(), byTexel);
             for (size_t k = 0; k < row.size(); ++k)
-                distinct[p] += k == 0 || row[k].texel != row[k - 1].texel ? 1u : 0u;
+                distinct[i] += k == 0 || row[k].texel != row[k - 1].texel ? 1u : 0u;
         }
     });
-    // Step 2: row pointers, four rows of distinct[p] entries per pixel.
-    m->rowPtr.assign(4 * rows->size() + 1, 0);
-    for (size_t p = 0; p < rows->size(); ++p)
+    // Step 2: row pointers, four rows of distinct[i] entries per pixel.
+    m->rowPtr.assign(4 * kept + 1, 0);
+    for (size_t i = 0; i < kept; ++i)
         for (size_t c = 0; c < 4; ++c)
-            m->rowPtr[4 * p + c + 1] = m->rowPtr[4 * p + c] + distinct[p];
+            m->rowPtr[4 * i + c + 1] = m->rowPtr[4 * i + c] + distinct[i];
     m->col.resize(static_cast<size_t>(m->rowPtr.back()));
     m->val.resize(m->col.size());
     // Step 3: the entries.
-    base::ForRanges(n, threads, 4096, [&](int64_t p0, int64_t p1) {
-        for (auto p = static_cast<size_t>(p0); p < static_cast<size_t>(p1); ++p) {
-            std::vector<MatrixTap>& row = (*rows)[p];
-            auto at = static_cast<size_t>(m->rowPtr[4 * p]);
+    base::ForRanges(n, threads, 4096, [&](int64_t i0, int64_t i1) {
+        for (auto i = static_cast<size_t>(i0); i < static_cast<size_t>(i1); ++i) {
+            std::vector<MatrixTap>& row = (*rows)[pixelOf(i)];
+            auto at = static_cast<size_t>(m->rowPtr[4 * i]);
             for (size_t c = 0; c < 4; ++c)
                 for (size_t k = 0; k < row.size(); ++k) {
                     const double v = row[k].weight * static_cast<double>(row[k].modulation[c]);
@@ -325,6 +328,18 @@ void RowsToCsr(MatrixRows* rows, RenderingMatrix* m, int threads) {
             std::vector<MatrixTap>().swap(row);
         }
     });
+}
+
+// The per-pixel arrays of the kept pixels, moved to the front in place (pixelOf(i) >= i).
+template <class PixelOf>
+void KeepPixels(size_t kept, const PixelOf& pixelOf, RenderingMatrix* m) {
+    for (size_t i = 0; i < kept; ++i) {
+        const size_t p = pixelOf(i);
+        for (size_t c = 0; c < 4; ++c) m->offset[4 * i + c] = m->offset[4 * p + c];
+        m->fragments[i] = m->fragments[p];
+    }
+    m->offset.resize(4 * kept);
+    m->fragments.resize(kept);
 }
 
 // The float of each byte (c / 255, or llvmpipe's c * fl(1/255)), through a table of the 256.
@@ -382,7 +397,8 @@ std::vector<RenderResult> RenderFrames(const std::vector<const PreparedFrame*>& 
     return results;
 }
 
-RenderingMatrix BuildRenderingMatrix(const PreparedFrame& prepared, const RenderOptions& options) {
+RenderingMatrix BuildRenderingMatrix(const PreparedFrame& prepared, const RenderOptions& options,
+                                     const std::vector<uint32_t>* pixels) {
     const Frame& frame = prepared.frame();
     for (size_t i = 0; i < frame.passes.size(); ++i) {
         const Pass& p = frame.passes[i];
@@ -391,8 +407,16 @@ RenderingMatrix BuildRenderingMatrix(const PreparedFrame& prepared, const Render
                                         ": blend is not linear in the texels (use none or add)");
     }
     const size_t n = static_cast<size_t>(frame.width) * frame.height;
+    const std::vector<uint32_t> none;
+    const std::vector<uint32_t>& list = pixels ? *pixels : none;
+    for (size_t i = 0; i < list.size(); ++i)
+        if (list[i] >= n || (i > 0 && list[i] <= list[i - 1]))
+            throw std::invalid_argument(
+                "BuildRenderingMatrix: kept pixels not increasing in the frame");
+    const size_t kept = pixels ? list.size() : n;
+    const auto pixelOf = [&](size_t i) { return pixels ? size_t{list[i]} : i; };
     RenderingMatrix m;
-    m.rows = static_cast<int64_t>(4 * n);
+    m.rows = static_cast<int64_t>(4 * kept);
     m.cols = 4 * static_cast<int64_t>(prepared.indexer().TotalTexels());
     m.offset.assign(4 * n, 0.0);
     m.fragments.assign(n, 0);
@@ -411,11 +435,17 @@ RenderingMatrix BuildRenderingMatrix(const PreparedFrame& prepared, const Render
         DrawFrame(tg);
         FinishResult(options, &r);
     }
-    RowsToCsr(&rows, &m, options.threads);
-    m.rendered.resize(4 * n);
-    for (size_t i = 0; i < 4 * n; ++i)
-        m.rendered[i] = options.profile == Profile::Linear ? static_cast<double>(r.imageF.rgba[i])
-                                                           : r.image8.rgba[i] / 255.0;
+    // The kept pixels' rows, offsets, fragment counts and rendered values.
+    RowsToCsr(&rows, kept, pixelOf, &m, options.threads);
+    KeepPixels(kept, pixelOf, &m);
+    m.rendered.resize(4 * kept);
+    for (size_t i = 0; i < kept; ++i)
+        for (size_t c = 0; c < 4; ++c) {
+            const size_t at = 4 * pixelOf(i) + c;
+            m.rendered[4 * i + c] = options.profile == Profile::Linear
+                                        ? static_cast<double>(r.imageF.rgba[at])
+                                        : r.image8.rgba[at] / 255.0;
+        }
     return m;
 }
 

@@ -106,6 +106,10 @@ struct RenderingMatrix {
     std::vector<uint16_t> fragments;  // per pixel: fragments written since the last unblended one
 };
 
-RenderingMatrix BuildRenderingMatrix(const PreparedFrame& frame, const RenderOptions& options);
+// `pixels`, when given, lists the pixels whose rows are kept (row-major indices, increasing;
+// none is allowed): rows 4i..4i+3 (and offset, rendered, fragments[i]) are then pixel
+// (*pixels)[i]'s, the same values as the whole frame's rows of that pixel. Null: every pixel.
+RenderingMatrix BuildRenderingMatrix(const PreparedFrame& frame, const RenderOptions& options,
+                                     const std::vector<uint32_t>* pixels = nullptr);
 
 }  // namespace pem::raster

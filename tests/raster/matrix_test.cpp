@@ -17,6 +17,7 @@
 //    so the 8-bit frame is A x + offset rounded once (float_to_ubyte): within 0.5 + 1e-3.
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -248,6 +249,81 @@ TEST(RenderingMatrix, SoftpipeFrameWithinOneRounding) {
         ++checked;
     }
     EXPECT_GT(checked, 40);
+}
+
+uint64_t Bits(double v) {
+    return std::bit_cast<uint64_t>(v);
+}
+
+// Kept pixels (every third, and the last): their rows are the whole frame's rows of those pixels,
+// bit for bit, in every profile (each frame in one of the three), an empty list keeps none, and in
+// the linear profile A x is the rendered frame there; a list not increasing inside the frame is
+// refused.
+TEST(RenderingMatrix, KeptPixelsAreTheWholeFramesRows) {
+    int checked = 0;
+    const std::vector<NamedCase> frames = LinearFrames();
+    const Profile profiles[] = {Profile::Linear, Profile::Llvmpipe, Profile::Softpipe};
+    for (size_t f = 0; f < frames.size(); ++f) {
+        const NamedCase& c = frames[f];
+        const Profile profile = profiles[f % 3];
+        RenderOptions opt;
+        opt.profile = profile;
+        const PreparedFrame pf(c.frame);
+        const auto n = static_cast<uint32_t>(c.frame.width * c.frame.height);
+        std::vector<uint32_t> pixels;
+        for (uint32_t p = 1; p < n; p += 3) pixels.push_back(p);
+        if (pixels.empty() || pixels.back() != n - 1) pixels.push_back(n - 1);
+        const RenderingMatrix all = BuildRenderingMatrix(pf, opt);
+        const RenderingMatrix a = BuildRenderingMatrix(pf, opt, &pixels);
+        ASSERT_EQ(a.rows, 4 * static_cast<int64_t>(pixels.size())) << c.name;
+        ASSERT_EQ(a.cols, all.cols);
+        ASSERT_EQ(a.rowPtr.size(), 4 * pixels.size() + 1) << c.name;
+        ASSERT_EQ(a.offset.size(), 4 * pixels.size()) << c.name;
+        ASSERT_EQ(a.rendered.size(), 4 * pixels.size()) << c.name;
+        ASSERT_EQ(a.fragments.size(), pixels.size()) << c.name;
+        ASSERT_EQ(all.fragments.size(), size_t{n}) << c.name;
+        ASSERT_EQ(all.rendered.size(), 4 * size_t{n}) << c.name;
+        for (size_t i = 0; i < pixels.size(); ++i) {
+            const size_t p = pixels[i];
+            ASSERT_EQ(a.fragments[i], all.fragments[p]) << c.name;
+            for (size_t ch = 0; ch < 4; ++ch) {
+                const size_t r = 4 * i + ch, ra = 4 * p + ch;
+                ASSERT_EQ(Bits(a.offset[r]), Bits(all.offset[ra])) << c.name;
+                ASSERT_EQ(Bits(a.rendered[r]), Bits(all.rendered[ra])) << c.name;
+                const int64_t len = a.rowPtr[r + 1] - a.rowPtr[r];
+                ASSERT_EQ(len, all.rowPtr[ra + 1] - all.rowPtr[ra]) << c.name << " row " << r;
+                for (int64_t k = 0; k < len; ++k) {
+                    ASSERT_EQ(a.col[static_cast<size_t>(a.rowPtr[r] + k)],
+                              all.col[static_cast<size_t>(all.rowPtr[ra] + k)]);
+                    ASSERT_EQ(Bits(a.val[static_cast<size_t>(a.rowPtr[r] + k)]),
+                              Bits(all.val[static_cast<size_t>(all.rowPtr[ra] + k)]));
+                }
+            }
+        }
+        if (profile == Profile::Linear) {
+            const std::vector<double> y = Apply(a, TexelVector(c.frame));
+            const ImageF img = Render(pf, opt).imageF;
+            for (size_t r = 0; r < y.size(); ++r) {
+                const float v = img.rgba[4 * pixels[r / 4] + r % 4];
+                if (std::isnan(y[r]) && std::isnan(v)) continue;  // NaN weights
+                ASSERT_NEAR(v, y[r], 1e-5 * std::max(1.0, std::fabs(y[r])) + 1e-6) << c.name;
+            }
+        }
+        ++checked;
+    }
+    EXPECT_GT(checked, 40);
+    const NamedCase& c = frames.front();
+    const PreparedFrame pf(c.frame);
+    const auto n = static_cast<uint32_t>(c.frame.width * c.frame.height);
+    // An empty list keeps no rows (a neighbour sample that does not see the group).
+    const std::vector<uint32_t> none;
+    const RenderingMatrix empty = BuildRenderingMatrix(pf, RenderOptions{}, &none);
+    EXPECT_EQ(empty.rows, 0);
+    EXPECT_EQ(empty.rowPtr.size(), 1u);
+    EXPECT_TRUE(empty.col.empty() && empty.offset.empty() && empty.rendered.empty());
+    for (const std::vector<uint32_t>& bad :
+         {std::vector<uint32_t>{3, 3}, std::vector<uint32_t>{5, 2}, std::vector<uint32_t>{n}})
+        EXPECT_THROW(BuildRenderingMatrix(pf, RenderOptions{}, &bad), std::invalid_argument);
 }
 
 }  // namespace
