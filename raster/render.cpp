@@ -259,9 +259,17 @@ FragmentTarget ClearedTarget(const PreparedFrame& prepared, const RenderOptions&
                              RenderResult* r) {
     const Frame& frame = prepared.frame();
     const size_t n = static_cast<size_t>(frame.width) * frame.height;
-    r->image8 = {frame.width, frame.height, std::vector<uint8_t>(4 * n)};
-    for (size_t i = 0; i < n; ++i)
-        for (int c = 0; c < 4; ++c) r->image8.rgba[4 * i + c] = frame.clear[c];
+    // One pass over the picture: a byte fill when the four bytes agree, else 32-bit stores.
+    const auto& k = frame.clear;
+    if (k[0] == k[1] && k[1] == k[2] && k[2] == k[3]) {
+        r->image8 = {frame.width, frame.height, std::vector<uint8_t>(4 * n, k[0])};
+    } else {
+        r->image8 = {frame.width, frame.height, std::vector<uint8_t>(4 * n)};
+        uint32_t pattern;
+        std::memcpy(&pattern, k.data(), 4);
+        uint8_t* px = r->image8.rgba.data();
+        for (size_t i = 0; i < n; ++i) std::memcpy(px + 4 * i, &pattern, 4);
+    }
     if (options.profile == Profile::Linear) {
         r->imageF = {frame.width, frame.height, std::vector<float>(4 * n)};
         for (size_t i = 0; i < 4 * n; ++i)

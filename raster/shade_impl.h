@@ -6,6 +6,7 @@
 // the rendering matrix).
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <vector>
 
@@ -186,11 +187,20 @@ void DrawTriangle(const std::vector<std::vector<PassDraw>>& variants, const Setu
         for (int b = band0; b <= band1; ++b) mine |= b % workers == worker;
         if (!mine) return;
     }
-    // Edge values per lane relative to the group origin, so a group costs 8 adds per edge.
-    int64_t laneOffset[3][kLanes];
-    for (int e = 0; e < 3; ++e)
+    // Edge values per lane relative to the group origin, so a group costs 8 adds per edge, and
+    // their least and greatest: a group whose origin value plus the least is positive lies inside
+    // the edge, one whose value plus the greatest is not positive lies outside (the edge function
+    // is linear; the sums cannot wrap while |origin value| < 2^62 and every offset < 2^61).
+    int64_t laneOffset[3][kLanes], leastOffset[3], greatestOffset[3];
+    constexpr int64_t kNoWrap = int64_t{1} << 61;
+    bool smallOffsets = true;
+    for (int e = 0; e < 3; ++e) {
         for (int l = 0; l < kLanes; ++l)
             laneOffset[e][l] = -t.edge[e].dcdx * kLaneDx[l] + t.edge[e].dcdy * kLaneDy[l];
+        leastOffset[e] = *std::min_element(laneOffset[e], laneOffset[e] + kLanes);
+        greatestOffset[e] = *std::max_element(laneOffset[e], laneOffset[e] + kLanes);
+        smallOffsets &= leastOffset[e] > -kNoWrap && greatestOffset[e] < kNoWrap;
+    }
     const int gy0 = t.y0 & ~1, gx0 = t.x0 & ~3;
     LaneAttribs qa;
     for (int gy = gy0; gy <= t.y1; gy += 2) {
@@ -209,6 +219,13 @@ void DrawTriangle(const std::vector<std::vector<PassDraw>>& variants, const Setu
             for (int e = 0; e < 3 && mask; ++e) {
                 const int64_t base =
                     WrapAdd64(WrapSub64(t.edge[e].c, t.edge[e].dcdx * gx), t.edge[e].dcdy * gy);
+                if (smallOffsets && base > -2 * kNoWrap && base < 2 * kNoWrap) {
+                    if (base + leastOffset[e] > 0) continue;  // every lane inside
+                    if (base + greatestOffset[e] <= 0) {      // every lane outside
+                        mask = 0;
+                        break;
+                    }
+                }
                 for (int l = 0; l < kLanes; ++l)
                     mask &= ~(static_cast<unsigned>(WrapAdd64(base, laneOffset[e][l]) <= 0) << l);
             }
