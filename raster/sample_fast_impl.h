@@ -8,6 +8,7 @@
 #pragma once
 
 #include <array>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 
@@ -198,8 +199,9 @@ void FilterFast(const PreparedTexture& pt, const FastFootprints& f, unsigned liv
                 std::array<RgbaF, kLanes>* colour) {
     for (int slot = 0; slot < f.slots; ++slot) {
         const bool anyCorner = f.anyCorner[slot];
-        for (int l = 0; l < kLanes; ++l) {
-            if (!(live & (1u << l)) || (slot == 1 && f.frac[l] == 0.0f)) continue;
+        for (unsigned set = live; set; set &= set - 1) {  // the live lanes, no branch per lane
+            const int l = std::countr_zero(set);
+            if (slot == 1 && f.frac[l] == 0.0f) continue;
             const int lv = f.level[slot][l];
             const float* texels = pt.levelsF[static_cast<size_t>(lv)].data();
             RgbaF v;

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <vector>
 
 #include "raster/blend.h"
@@ -63,8 +64,8 @@ unsigned DepthTestLanes(const FragmentTarget& tg, const DepthTest& test, const P
     const Frame& frame = tg.frame->frame();
     const DepthFormat format = frame.depth->format;
     unsigned passed = 0;
-    for (int l = 0; l < kLanes; ++l) {
-        if (!(mask & (1u << l))) continue;
+    for (unsigned set = mask; set; set &= set - 1) {  // the set lanes, no branch per lane
+        const int l = std::countr_zero(set);
         const int x = gx + kLaneDx[l], y = gy + kLaneDy[l];
         uint32_t& stored = (*tg.depth)[static_cast<size_t>(frame.height - 1 - y) * frame.width + x];
         const uint32_t value = DepthFromFloat(format, depth->z[l]);
@@ -101,8 +102,8 @@ void ShadeGroup(const FragmentTarget& tg, const Pass& pass, const LaneAttribs& q
 
     const int co = PassColourAttrib(pass);
     const bool linear = tg.options.profile == Profile::Linear;
-    for (int l = 0; l < kLanes; ++l) {
-        if (!(mask & (1u << l))) continue;
+    for (unsigned set = mask; set; set &= set - 1) {  // the set lanes, no branch per lane
+        const int l = std::countr_zero(set);
         const int x = gx + kLaneDx[l], y = gy + kLaneDy[l];
         const size_t pixel = static_cast<size_t>(frame.height - 1 - y) * frame.width + x;
 
