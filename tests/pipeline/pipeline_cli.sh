@@ -181,6 +181,11 @@ for b in budget:
     stages = [st["stage"] for st in b["stages"]]
     if stages != ["two-term model", "layered EM", "best maps, exact lookups", "nonnegative maps", "maps' range", "map resolution", "texgen, filtering, solve", "hardware frame"]: fail(f"budget stages {stages}")
     if not all(st["psnr"] is not None and 5 < st["psnr"] <= 100 for st in b["stages"]): fail(f"budget PSNR {b}")
+    # Against the two-term frame (the maps' target) from the layered EM on; the first stage is
+    # that frame itself. A mirror group's two-term frame is its full tree: both columns agree.
+    if b["stages"][0]["psnrVsTwoTerm"] is not None: fail(f"budget: two-term model vs itself {b}")
+    if not all(st["psnrVsTwoTerm"] is not None and 5 < st["psnrVsTwoTerm"] < 100 for st in b["stages"][1:]): fail(f"budget PSNR vs two-term {b}")
+    if "mirror_cup" in b["group"] and any(abs(st["psnr"] - st["psnrVsTwoTerm"]) > 1e-9 for st in b["stages"][1:]): fail(f"mirror cup: two-term frame is not its full tree {b}")
 # Each bound can only cost: the unbounded fit through the same exact lookups is the best, and the
 # mirror cup reflects radiance above 2 (the lamps, the lit floor through F < 1), which maps held in
 # [0, 2] (the default radiance scale) must show.

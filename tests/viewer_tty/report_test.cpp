@@ -257,8 +257,12 @@ ReportData SampleData() {
 TEST(ReportWriter, WritesFourParseableFiles) {
     const fs::path dir = MakeTempDir();
     ReportData data = SampleData();
-    data.budget = {
-        {"[\"lens\"]", "on circle", 10, {{"two-term model", 30.0, NAN}, {"maps", 20.0, 10.0}}}};
+    data.budget = {{"[\"lens\"]",
+                    "on circle",
+                    10,
+                    {{"two-term model", 30.0, NAN},
+                     {"maps", 20.0, 10.0, 24.5, NAN},
+                     {"frame", 19.0, 1.0, 23.0, 1.5}}}};
     WriteReport(data, dir.string());
     EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 4);
     // Markdown: every method and position, the stability verdicts and the left-out total.
@@ -287,11 +291,20 @@ TEST(ReportWriter, WritesFourParseableFiles) {
     EXPECT_EQ(Count(svg, "class=\"marker\""), data.results.size());
     EXPECT_EQ(svg.find("href"), std::string::npos);
     EXPECT_EQ(svg.find("<script"), std::string::npos);
-    // The error budget: a table row per stage, null for the first stage's cost, a bar per stage.
-    EXPECT_NE(md.find("| maps | 20.00 | 10.00 |"), std::string::npos);
-    EXPECT_TRUE(j.at("budget")[0].at("stages")[0].at("cost").is_null());
-    EXPECT_EQ(j.at("budget")[0].at("stages")[1].at("psnr"), 20.0);
-    EXPECT_EQ(Count(ReadAll(dir / "budget.svg"), "<rect x="), 2u);
+    // The error budget: a table row per stage against the reference and the two-term frame
+    // ("—" and null where not measured), a bar per stage.
+    EXPECT_NE(md.find("| two-term model | 30.00 | — | — | — |"), std::string::npos);
+    EXPECT_NE(md.find("| maps | 20.00 | 10.00 | 24.50 | — |"), std::string::npos);
+    EXPECT_NE(md.find("| frame | 19.00 | 1.00 | 23.00 | 1.50 |"), std::string::npos);
+    const nlohmann::json& stages = j.at("budget")[0].at("stages");
+    EXPECT_TRUE(stages[0].at("cost").is_null());
+    EXPECT_TRUE(stages[0].at("psnrVsTwoTerm").is_null());
+    EXPECT_EQ(stages[1].at("psnr"), 20.0);
+    EXPECT_EQ(stages[1].at("psnrVsTwoTerm"), 24.5);
+    EXPECT_EQ(stages[2].at("costVsTwoTerm"), 1.5);
+    const std::string budgetSvg = ReadAll(dir / "budget.svg");
+    EXPECT_EQ(Count(budgetSvg, "<rect x="), 3u);
+    EXPECT_EQ(Count(budgetSvg, "vs two-term 23.0 dB"), 1u);
     fs::remove_all(dir);
 }
 

@@ -6,17 +6,21 @@
 #include <cmath>
 #include <limits>
 #include <nlohmann/json.hpp>
+#include <utility>
 
 #include "base/display_image.h"
 #include "pipeline/layout.h"
 #include "runtime/parameterization.h"
 #include "trace/image.h"
+#include "trace/render.h"
 #include "viewer_tty/report/exact_fit.h"
 
 namespace pem::report {
 namespace {
 
 using Rgb = std::vector<float>;  // 3 floats per pixel, rows top-down
+
+constexpr double kIdenticalPsnr = 100.0;  // DisplayPsnr of equal images
 
 Rgb RgbOf(const trace::FloatImage& img) {
     Rgb out(static_cast<size_t>(img.width) * static_cast<size_t>(img.height) * 3);
@@ -40,7 +44,7 @@ double DisplayPsnr(const Rgb& a, const Rgb& b, int w, int h, const std::vector<u
         ++n;
     }
     if (n == 0) return std::numeric_limits<double>::quiet_NaN();
-    return se > 0.0 ? 10.0 * std::log10(3.0 * static_cast<double>(n) / se) : 100.0;
+    return se > 0.0 ? 10.0 * std::log10(3.0 * static_cast<double>(n) / se) : kIdenticalPsnr;
 }
 
 // A group's traced images at a sample.
@@ -120,10 +124,20 @@ std::string GroupName(const runtime::LensGroupEm& g) {
     return nlohmann::json(g.objects).dump();
 }
 
-void AddStage(GroupBudget* b, const std::string& stage, double psnr) {
-    const double before =
-        b->stages.empty() ? std::numeric_limits<double>::quiet_NaN() : b->stages.back().psnr;
-    b->stages.push_back({stage, psnr, before - psnr});
+// The dB a stage cost: the PSNR before it minus with it; none after the first stage or after a
+// frame identical to its comparison (DisplayPsnr's 100 dB: no finite PSNR to lose from).
+double CostFrom(double before, double psnr) {
+    const double none = std::numeric_limits<double>::quiet_NaN();
+    return std::isfinite(before) && before < kIdenticalPsnr ? before - psnr : none;
+}
+
+// A stage against the reference, and against the two-term frame (NaN: not measured).
+void AddStage(GroupBudget* b, const std::string& stage, double psnr,
+              double psnrVsTarget = std::numeric_limits<double>::quiet_NaN()) {
+    const double none = std::numeric_limits<double>::quiet_NaN();
+    const BudgetStage* before = b->stages.empty() ? nullptr : &b->stages.back();
+    b->stages.push_back({stage, psnr, CostFrom(before ? before->psnr : none, psnr), psnrVsTarget,
+                         CostFrom(before ? before->psnrVsTarget : none, psnrVsTarget)});
 }
 
 // The size of the group's layer maps at the sample (the largest, when infer chose it): a cube's
@@ -152,33 +166,36 @@ GroupBudget SampleBudget(runtime::Renderer& renderer, const pipeline::TraceManif
     for (size_t p = 0; p < mask.size(); ++p) mask[p] = im.b[0].data[4 * p + 3] > 0.5f;
     GroupBudget b{GroupName(g), "on circle", 0, {}};
     for (uint8_t m : mask) b.pixels += m;
+    // Each stage against the reference and against the two-term frame (the method's target).
+    const auto stage = [&](const std::string& name, const Rgb& frame) {
+        AddStage(&b, name, DisplayPsnr(frame, ref, w, h, mask),
+                 DisplayPsnr(frame, greedy, w, h, mask));
+    };
     AddStage(&b, "two-term model", DisplayPsnr(greedy, ref, w, h, mask));
-    const Rgb layered = Recomposed(greedy, im, g.Terms(), g.layers.size(),
+    stage("layered EM", Recomposed(greedy, im, g.Terms(), g.layers.size(),
                                    [&](int t, size_t l, size_t p, float* v) {
                                        const float cov = im.b[0].data[4 * p + 3];
                                        for (size_t c = 0; c < 4; ++c)
                                            v[c] = im.layers[t][l].data[4 * p + c] / cov;
-                                   });
-    AddStage(&b, "layered EM", DisplayPsnr(layered, ref, w, h, mask));
-    // Layer images (Renderer::LayerImages' layout) composited into the frame, against ref.
-    const auto psnrOf = [&](const std::vector<std::vector<raster::ImageF>>& layers) {
-        return DisplayPsnr(Recomposed(greedy, im, g.Terms(), layers.empty() ? 0 : layers[0].size(),
-                                      [&](int t, size_t l, size_t p, float* v) {
-                                          for (size_t c = 0; c < 4; ++c)
-                                              v[c] = layers[size_t(t)][l].rgba[4 * p + c];
-                                      }),
-                           ref, w, h, mask);
+                                   }));
+    // Layer images (Renderer::LayerImages' layout) composited into the frame.
+    const auto composited = [&](const std::vector<std::vector<raster::ImageF>>& layers) {
+        return Recomposed(greedy, im, g.Terms(), layers.empty() ? 0 : layers[0].size(),
+                          [&](int t, size_t l, size_t p, float* v) {
+                              for (size_t c = 0; c < 4; ++c)
+                                  v[c] = layers[size_t(t)][l].rgba[4 * p + c];
+                          });
     };
     const ExactStages exact =
         ExactLookupStages(renderer.tracer(), cam, trace.spp, g, Targets(im, g), im.b[0],
                           GroupMapResolution(renderer.maps(), view, g),
                           static_cast<double>(renderer.maps().hardware.radianceScale), s.threads);
-    AddStage(&b, "best maps, exact lookups", psnrOf(exact.unbounded));
-    AddStage(&b, "nonnegative maps", psnrOf(exact.nonnegative));
-    AddStage(&b, "maps' range", psnrOf(exact.inRange));
-    AddStage(&b, "map resolution", psnrOf(exact.ownResolution));
-    AddStage(&b, "texgen, filtering, solve", psnrOf(renderer.LayerImages(cam, s, g.index, view)));
-    AddStage(&b, "hardware frame", DisplayPsnr(RgbOf(hybrid.image), ref, w, h, mask));
+    stage("best maps, exact lookups", composited(exact.unbounded));
+    stage("nonnegative maps", composited(exact.nonnegative));
+    stage("maps' range", composited(exact.inRange));
+    stage("map resolution", composited(exact.ownResolution));
+    stage("texgen, filtering, solve", composited(renderer.LayerImages(cam, s, g.index, view)));
+    stage("hardware frame", RgbOf(hybrid.image));
     return b;
 }
 
@@ -195,14 +212,20 @@ std::vector<double> HybridVsTraced(const runtime::RenderedFrame& hybrid,
     return out;
 }
 
-// The same at an off-sample position: both frames rendered there.
-std::vector<double> HybridVsTracedAt(runtime::Renderer& renderer, const raster::Camera& cam,
-                                     const runtime::RenderSettings& s, int spp) {
+// The same at an off-sample position, against the full tree (first) and the two-term frame
+// (second), all three frames rendered there.
+std::pair<std::vector<double>, std::vector<double>> HybridVsTracedAt(
+    runtime::Renderer& renderer, const raster::Camera& cam, const runtime::RenderSettings& s,
+    int spp) {
     runtime::RenderSettings rs = s;
     rs.method = runtime::Method::RayTraced;
     rs.spp = spp;
-    return HybridVsTraced(renderer.Render(cam, s), renderer.Render(cam, rs).image,
-                          renderer.maps().groups.size());
+    const runtime::RenderedFrame hybrid = renderer.Render(cam, s);
+    const size_t groups = renderer.maps().groups.size();
+    const trace::FloatImage twoTerm =
+        trace::RenderFrame(renderer.tracer(), cam, spp, trace::Model::Greedy, s.threads).image;
+    return {HybridVsTraced(hybrid, renderer.Render(cam, rs).image, groups),
+            HybridVsTraced(hybrid, twoTerm, groups)};
 }
 
 }  // namespace
@@ -219,18 +242,22 @@ std::vector<GroupBudget> ErrorBudget(runtime::Renderer& renderer,
     const runtime::RenderedFrame hybrid = renderer.Render(sample, s);
     for (const runtime::LensGroupEm& g : renderer.maps().groups)
         out.push_back(SampleBudget(renderer, trace, g, hybrid, s));
-    // Step 2: off the samples, against the same measure at the sample (the trace's reference
-    // there is the ray tracer's frame at K×K).
-    const std::vector<double> atSample = HybridVsTraced(
-        hybrid, pipeline::ReadFrameImage(trace, renderer.maps().inferred.front(), "reference"),
-        renderer.maps().groups.size());
+    // Step 2: off the samples, against the same measures at the sample (the trace's reference
+    // and two-term frame there are the ray tracer's frames at K×K).
+    const int view = renderer.maps().inferred.front();
+    const size_t groups = renderer.maps().groups.size();
+    const std::vector<double> atSample =
+        HybridVsTraced(hybrid, pipeline::ReadFrameImage(trace, view, "reference"), groups);
+    const std::vector<double> atSampleVsTarget =
+        HybridVsTraced(hybrid, pipeline::ReadFrameImage(trace, view, "greedy"), groups);
     for (size_t k = 1; k < positions.size(); ++k) {
-        const std::vector<double> there =
+        const auto [there, thereVsTarget] =
             HybridVsTracedAt(renderer, positions[k].camera, s, trace.spp);
         for (const runtime::LensGroupEm& g : renderer.maps().groups) {
             GroupBudget b{GroupName(g), positions[k].name, 0, {}};
-            AddStage(&b, "hybrid at the sample", atSample[size_t(g.index)]);
-            AddStage(&b, "off the samples", there[size_t(g.index)]);
+            const size_t i = size_t(g.index);
+            AddStage(&b, "hybrid at the sample", atSample[i], atSampleVsTarget[i]);
+            AddStage(&b, "off the samples", there[i], thereVsTarget[i]);
             out.push_back(b);
         }
     }

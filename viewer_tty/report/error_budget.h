@@ -6,8 +6,9 @@
 //   std::vector<GroupBudget> b = ErrorBudget(renderer, trace, bakeDirOffPositions, threads);
 //
 // At the first viewpoint sample (the report's "on circle"), against the trace's full-tree
-// reference there (same K×K sampling), on the group's pixels (coverage > 0.5), PSNR of the
-// 8-bit sRGB display images (as the PNG files):
+// reference there (same K×K sampling) and against its two-term frame (greedy: the frame the maps
+// are fitted to, so the method's own measure), on the group's pixels (coverage > 0.5), PSNR of
+// the 8-bit sRGB display images (as the PNG files):
 //   two-term model      the greedy R + T paths instead of the full ray tree (traced)
 //   layered EM          the traced layer images composited with premultiplied over, times the
 //                       traced F·G: what perfect maps on these layers could give
@@ -25,8 +26,8 @@
 //   hardware frame      the hybrid frame as drawn: per-vertex F·G, 8-bit maps and framebuffer,
 //                       the hardware's compositing
 // Off the samples (between two samples, 10° above): the hybrid frame against the ray tracer at
-// the same K×K there, on the pixels that see the group, compared with the same measure at the
-// sample: the cost of being away from the sample.
+// the same K×K there (full tree, and the two-term model traced there), on the pixels that see
+// the group, compared with the same measures at the sample: the cost of being away from it.
 // Not here: the documents (report_writer.h: GroupBudget, the table and budget.svg).
 #pragma once
 

@@ -52,10 +52,13 @@ struct StabilityRow {
 
 // The error budget of one lens group at one position (error_budget.h): stages in order, each
 // with the PSNR of the frame that has it and every stage before it, and the dB it cost.
+// Each also against the two-term frame, the method's target (the traced greedy image).
 struct BudgetStage {
     std::string stage;  // "two-term model", "layered EM", "maps", "hardware frame", ...
     double psnr = 0.0;  // dB against the reference on the group's pixels
-    double cost = 0.0;  // PSNR before it − PSNR with it (NaN for the first stage)
+    double cost = 0.0;  // PSNR before it − PSNR with it (NaN: first stage, or after 100 dB)
+    double psnrVsTarget = std::numeric_limits<double>::quiet_NaN();  // NaN: not measured
+    double costVsTarget = std::numeric_limits<double>::quiet_NaN();
 };
 struct GroupBudget {
     std::string group;     // the group's objects
