@@ -70,13 +70,15 @@ inline float FastLog2(float x) {
 // float -> unorm8 as llvmpipe stores a fragment colour: clamp to [0, 1] (NaN -> 0), multiply
 // by 255 in float, round half to even.
 inline uint8_t UnormFromFloatRne(float x) {
-    const float c = x > 0.0f ? (x < 1.0f ? x : 1.0f) : 0.0f;  // NaN fails x > 0 -> 0
+    const float low = x > 0.0f ? x : 0.0f;    // NaN fails x > 0 -> 0 (maxss, no branch)
+    const float c = low < 1.0f ? low : 1.0f;  // (minss)
     return static_cast<uint8_t>(std::nearbyint(c * 255.0f));
 }
 
 // The D3D rule: clamp, then floor(x * 255 + 0.5) with the product rounded to float first.
 inline uint8_t UnormFromFloatHalfUp(float x) {
-    const float c = x > 0.0f ? (x < 1.0f ? x : 1.0f) : 0.0f;
+    const float low = x > 0.0f ? x : 0.0f;
+    const float c = low < 1.0f ? low : 1.0f;
     return static_cast<uint8_t>(std::floor(c * 255.0f + 0.5f));
 }
 

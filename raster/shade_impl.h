@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <cstring>
 #include <vector>
 
 #include "raster/blend.h"
@@ -138,8 +139,15 @@ void ShadeGroup(const FragmentTarget& tg, const Pass& pass, const LaneAttribs& q
             const UnormRounding r = tg.options.rounding;
             const Rgba8 s8{ToUnorm(src[0], r), ToUnorm(src[1], r), ToUnorm(src[2], r),
                            ToUnorm(src[3], r)};
-            const Rgba8 out =
-                pass.blend.enabled ? Blend8(pass.blend, s8, {d[0], d[1], d[2], d[3]}) : s8;
+            if (!pass.blend.enabled) {
+                // One 32-bit store from registers (byte stores read back as a word stall).
+                static_assert(std::endian::native == std::endian::little);
+                const uint32_t packed = uint32_t{s8[0]} | uint32_t{s8[1]} << 8 |
+                                        uint32_t{s8[2]} << 16 | uint32_t{s8[3]} << 24;
+                std::memcpy(d, &packed, 4);
+                continue;
+            }
+            const Rgba8 out = Blend8(pass.blend, s8, {d[0], d[1], d[2], d[3]});
             for (int c = 0; c < 4; ++c) d[c] = out[c];
         }
     }
