@@ -112,4 +112,49 @@ RgbaF BlendF(const BlendState& st, const RgbaF& s, const RgbaF& d) {
     return out;
 }
 
+// llvmpipe (lp_bld_blend_aos.c, lp_bld_blend.c, Mesa 22.3.6) on float colour buffers: factor
+// vectors with the RGB factor in R, G, B and the alpha factor in A (ONE_MINUS_X as 1 - x). When
+// the source and destination factors are equal for RGB and for alpha, ADD, SUBTRACT and
+// REVERSE_SUBTRACT are factored: (s op d) * factor. Otherwise s * sf op d * df, unfused. A
+// product with the constant ONE is its operand and with ZERO is +0 (folded when the code is
+// built). MIN and MAX take the operands (the factors are ONE). The alpha channel uses the alpha
+// equation; the RGB channels the RGB one.
+RgbaF BlendFloatLlvmpipe(const BlendState& st, const RgbaF& s, const RgbaF& d) {
+    if (!st.enabled) return s;
+    const bool factored = st.srcRgb == st.dstRgb && st.srcAlpha == st.dstAlpha;
+    const auto times = [](float x, BlendFactor f, float value) {
+        if (f == BlendFactor::One) return x;
+        if (f == BlendFactor::Zero) return 0.0f;
+        return x * value;
+    };
+    RgbaF out;
+    for (int c = 0; c < 4; ++c) {
+        const bool alpha = c == 3;
+        const BlendEquation eq = alpha ? st.eqAlpha : st.eqRgb;
+        if (eq == BlendEquation::Min) {
+            out[c] = s[c] < d[c] ? s[c] : d[c];
+            continue;
+        }
+        if (eq == BlendEquation::Max) {
+            out[c] = s[c] > d[c] ? s[c] : d[c];
+            continue;
+        }
+        const BlendFactor fs = alpha ? st.srcAlpha : st.srcRgb;
+        const BlendFactor fd = alpha ? st.dstAlpha : st.dstRgb;
+        const float vs = Factor<float>(fs, c, s, d, 1.0f), vd = Factor<float>(fd, c, s, d, 1.0f);
+        if (factored) {
+            const float sum = eq == BlendEquation::Add        ? s[c] + d[c]
+                              : eq == BlendEquation::Subtract ? s[c] - d[c]
+                                                              : d[c] - s[c];
+            out[c] = times(sum, fs, vs);
+            continue;
+        }
+        const float ts = times(s[c], fs, vs), td = times(d[c], fd, vd);
+        out[c] = eq == BlendEquation::Add        ? ts + td
+                 : eq == BlendEquation::Subtract ? ts - td
+                                                 : td - ts;
+    }
+    return out;
+}
+
 }  // namespace pem::raster

@@ -24,7 +24,7 @@ struct FragmentTarget {
     const PreparedFrame* frame;
     RenderOptions options;
     Image8* image8;
-    ImageF* imageF;                          // Linear profile
+    ImageF* imageF;                          // a float colour buffer (FloatTarget)
     RenderingMatrix* matrix;                 // matrix mode: offsets per row
     MatrixRows* rows;                        // matrix mode: taps per pixel
     std::vector<uint32_t>* depth = nullptr;  // Frame::depth set: its buffer

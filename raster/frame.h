@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // frame.h — the value types that describe one frame for raster/: textures (cube maps and 2D
-// textures, RGBA8, every MIP level given explicitly), sampler state, passes of clip-space
-// triangles, blend state, an optional depth buffer and per-pass depth tests. A Frame is what a
+// textures, RGBA8 or RGBA32F, every MIP level given explicitly), sampler state, passes of
+// clip-space triangles, blend state, an RGBA8 or RGBA32F colour buffer, an optional depth buffer
+// and per-pass depth tests. A Frame is what a
 // raster case file (viewer_tty/conformance/case_file.h) holds and what both pemref's rasterizer
 // and the OpenGL reference harness (pemref-gl) render.
 //
@@ -48,14 +49,21 @@ struct SamplerState {
 
 enum class TextureKind { Cube, Tex2D };
 
-// An RGBA8 texture with every MIP level given explicitly (levels[l] has max(1, w>>l) by
-// max(1, h>>l) texels per face; 6 faces for a cube, 1 for 2D). Sizes are powers of two.
+// A texture's internal format (glTexImage2D): GL_RGBA8, 4 unorm bytes per texel (value c / 255),
+// or GL_RGBA32F, 16 bytes per texel: four little-endian float32 taken as they are (any value,
+// negative or above 1; llvmpipe samples them on its float path).
+enum class TexelFormat { Rgba8, Rgba32F };
+
+// A texture with every MIP level given explicitly (levels[l] has max(1, w>>l) by max(1, h>>l)
+// texels per face; 6 faces for a cube, 1 for 2D). Sizes are powers of two.
 struct Texture {
     TextureKind kind = TextureKind::Cube;
     int width = 1, height = 1;  // level 0; a cube has width == height
     SamplerState sampler;
-    std::vector<std::vector<uint8_t>> levels;  // levels[l]: faces * h_l * w_l * 4 bytes
+    TexelFormat format = TexelFormat::Rgba8;
+    std::vector<std::vector<uint8_t>> levels;  // levels[l]: faces * h_l * w_l * TexelBytes()
 
+    int TexelBytes() const { return format == TexelFormat::Rgba32F ? 16 : 4; }
     int Faces() const { return kind == TextureKind::Cube ? 6 : 1; }
     int NumLevels() const { return static_cast<int>(levels.size()); }
     int LevelWidth(int l) const { return std::max(1, width >> l); }
@@ -153,12 +161,18 @@ struct Pass {
     bool operator==(const Pass&) const = default;
 };
 
-// One frame: a cleared RGBA8 framebuffer (and depth buffer, if any) and passes drawn in order,
+// The colour renderbuffer's internal format: GL_RGBA8 (fragment colours clamped to [0, 1] and
+// converted to unorm8, 8-bit blending) or GL_RGBA32F (colours stored and blended as floats,
+// unclamped).
+enum class ColorFormat { Rgba8, Rgba32F };
+
+// One frame: a cleared colour buffer (and depth buffer, if any) and passes drawn in order,
 // no culling, viewport (0, 0, width, height), depth range [0, 1], clip volume
 // -w <= x, y, z <= w (z not clipped with depthClamp).
 struct Frame {
     int width = 1, height = 1;
-    std::array<uint8_t, 4> clear{0, 0, 0, 0};
+    ColorFormat colorFormat = ColorFormat::Rgba8;
+    std::array<uint8_t, 4> clear{0, 0, 0, 0};  // glClearColor(c / 255.0f): RGBA32F stores those
     bool depthClamp = false;
     std::optional<DepthBuffer> depth;  // absent: no depth buffer (depth tests pass everything)
     std::vector<Texture> textures;     // cube maps and 2D textures, referenced by Pass::texture
@@ -171,11 +185,21 @@ struct Frame {
 // RGBA8 pixels, rows top-down, 4 bytes per pixel (base/image8.h).
 using Image8 = base::Image8;
 
-// Float RGBA pixels, rows top-down (the `linear` profile's float framebuffer).
+// Float RGBA pixels, rows top-down (an RGBA32F colour buffer, or the `linear` profile's float
+// framebuffer).
 struct ImageF {
     int width = 0, height = 0;
     std::vector<float> rgba;
     bool operator==(const ImageF&) const = default;
 };
+
+// Component i (texel i / 4, channel i % 4) of level `level` as the value it stands for: c / 255
+// (RGBA8, in double) or the float (RGBA32F).
+double TexelValue(const Texture& texture, int level, size_t i);
+
+// Floats from their little-endian bytes (an RGBA32F level), and back (a level, or the bytes an
+// RGBA32F colour buffer's identity is computed over).
+std::vector<float> FloatsFromBytes(const std::vector<uint8_t>& bytes);
+std::vector<uint8_t> FloatBytes(const std::vector<float>& values);
 
 }  // namespace pem::raster

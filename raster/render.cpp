@@ -270,7 +270,7 @@ FragmentTarget ClearedTarget(const PreparedFrame& prepared, const RenderOptions&
         uint8_t* px = r->image8.rgba.data();
         for (size_t i = 0; i < n; ++i) std::memcpy(px + 4 * i, &pattern, 4);
     }
-    if (options.profile == Profile::Linear) {
+    if (FloatTarget(frame, options)) {
         r->imageF = {frame.width, frame.height, std::vector<float>(4 * n)};
         for (size_t i = 0; i < 4 * n; ++i)
             r->imageF.rgba[i] = static_cast<float>(r->image8.rgba[i]) / 255.0f;
@@ -284,9 +284,9 @@ FragmentTarget ClearedTarget(const PreparedFrame& prepared, const RenderOptions&
             ClearedDepth(frame, &r->depth)};
 }
 
-// The Linear profile's 8-bit picture from its float one, once drawn.
-void FinishResult(const RenderOptions& options, RenderResult* r) {
-    if (options.profile != Profile::Linear) return;
+// The 8-bit picture of a float colour buffer, once drawn.
+void FinishResult(const Frame& frame, const RenderOptions& options, RenderResult* r) {
+    if (!FloatTarget(frame, options)) return;
     for (size_t i = 0; i < r->imageF.rgba.size(); ++i)
         r->image8.rgba[i] =
             UnormFromFloat(r->imageF.rgba[i], options.rounding == UnormRounding::HalfEven);
@@ -362,6 +362,16 @@ std::vector<float> ToFloat(const std::vector<uint8_t>& bytes, bool exact) {
     return f;
 }
 
+// The softpipe model covers RGBA8 textures and colour buffers only.
+void RequireRgba8(const Frame& frame, const char* profile) {
+    bool rgba8 = frame.colorFormat == ColorFormat::Rgba8;
+    for (const Texture& t : frame.textures) rgba8 &= t.format == TexelFormat::Rgba8;
+    if (!rgba8)
+        throw std::invalid_argument(
+            std::string("the ") + profile +
+            " profile draws RGBA8 textures into an RGBA8 colour buffer only");
+}
+
 }  // namespace
 
 std::shared_ptr<const PreparedTexture> PrepareTexture(const Texture& t) {
@@ -369,6 +379,11 @@ std::shared_ptr<const PreparedTexture> PrepareTexture(const Texture& t) {
     p->source = &t;
     p->lod = DerivePipeLodState(t.sampler, t.NumLevels());
     for (const auto& level : t.levels) {
+        if (t.format == TexelFormat::Rgba32F) {  // the floats as they are, on every path
+            p->levelsF.push_back(FloatsFromBytes(level));
+            p->levelsExact.push_back(p->levelsF.back());
+            continue;
+        }
         p->levelsF.push_back(ToFloat(level, false));
         p->levelsExact.push_back(ToFloat(level, true));
     }
@@ -394,14 +409,18 @@ std::vector<RenderResult> RenderFrames(const std::vector<const PreparedFrame*>& 
                                        const RenderOptions& options) {
     std::vector<RenderResult> results(frames.size());
     if (options.profile == Profile::Softpipe) {
-        for (size_t f = 0; f < frames.size(); ++f) results[f] = RenderSoftpipe(*frames[f]);
+        for (size_t f = 0; f < frames.size(); ++f) {
+            RequireRgba8(frames[f]->frame(), "softpipe");
+            results[f] = RenderSoftpipe(*frames[f]);
+        }
         return results;
     }
     std::vector<FragmentTarget> targets;
     for (size_t f = 0; f < frames.size(); ++f)
         targets.push_back(ClearedTarget(*frames[f], options, &results[f]));
     if (!targets.empty()) DrawFrames(targets);
-    for (RenderResult& r : results) FinishResult(options, &r);
+    for (size_t f = 0; f < frames.size(); ++f)
+        FinishResult(frames[f]->frame(), options, &results[f]);
     return results;
 }
 
@@ -429,11 +448,16 @@ RenderingMatrix BuildRenderingMatrix(const PreparedFrame& prepared, const Render
     m.offset.assign(4 * n, 0.0);
     m.fragments.assign(n, 0);
     for (size_t i = 0; i < n; ++i)
-        for (int c = 0; c < 4; ++c) m.offset[4 * i + c] = frame.clear[c] / 255.0;
+        for (int c = 0; c < 4; ++c)
+            m.offset[4 * i + c] =
+                FloatTarget(frame, options)
+                    ? static_cast<double>(static_cast<float>(frame.clear[c]) / 255.0f)
+                    : frame.clear[c] / 255.0;
     MatrixRows rows(n);
     // The rows and the rendered picture in one draw (softpipe: the picture drawn after).
     RenderResult r;
     if (options.profile == Profile::Softpipe) {
+        RequireRgba8(frame, "softpipe");
         SoftpipeMatrixRows(prepared, &m, &rows);
         r = Render(prepared, options);
     } else {
@@ -441,7 +465,7 @@ RenderingMatrix BuildRenderingMatrix(const PreparedFrame& prepared, const Render
         tg.matrix = &m;
         tg.rows = &rows;
         DrawFrame(tg);
-        FinishResult(options, &r);
+        FinishResult(frame, options, &r);
     }
     // The kept pixels' rows, offsets, fragment counts and rendered values.
     RowsToCsr(&rows, kept, pixelOf, &m, options.threads);
@@ -450,7 +474,7 @@ RenderingMatrix BuildRenderingMatrix(const PreparedFrame& prepared, const Render
     for (size_t i = 0; i < kept; ++i)
         for (size_t c = 0; c < 4; ++c) {
             const size_t at = 4 * pixelOf(i) + c;
-            m.rendered[4 * i + c] = options.profile == Profile::Linear
+            m.rendered[4 * i + c] = FloatTarget(frame, options)
                                         ? static_cast<double>(r.imageF.rgba[at])
                                         : r.image8.rgba[at] / 255.0;
         }

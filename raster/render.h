@@ -42,12 +42,20 @@ struct RenderOptions {
     int threads = 1;
 };
 
+// Whether a frame is drawn into a float colour buffer: its own is RGBA32F, or the profile is
+// Linear (which draws every frame in float).
+inline bool FloatTarget(const Frame& frame, const RenderOptions& options) {
+    return options.profile == Profile::Linear || frame.colorFormat == ColorFormat::Rgba32F;
+}
+
 // Textures converted once for sampling (float copies for the float paths).
 struct PreparedTexture {
     const Texture* source = nullptr;
     PipeLodState lod;  // the sampler's LOD controls as llvmpipe receives them
-    std::vector<std::vector<float>> levelsF;      // c * fl(1/255) per byte (llvmpipe's conversion)
-    std::vector<std::vector<float>> levelsExact;  // c / 255 in float (linear profile)
+    // RGBA8: c * fl(1/255) per byte (llvmpipe's conversion) and c / 255 in float (linear
+    // profile); RGBA32F: the floats, in both.
+    std::vector<std::vector<float>> levelsF;
+    std::vector<std::vector<float>> levelsExact;
 };
 
 // One texture converted (the float copies are what PreparedFrame would make of it); `texture`
@@ -72,8 +80,10 @@ class PreparedFrame {
 };
 
 struct RenderResult {
-    Image8 image8;  // always
-    ImageF imageF;  // Linear profile: the float framebuffer (values may exceed [0, 1])
+    // Always; from a float colour buffer its RNE(clamp(v, 0, 1) * 255) (pemref's view of it,
+    // not a driver's readback).
+    Image8 image8;
+    ImageF imageF;  // a float colour buffer (FloatTarget): its values, unclamped
     // Frame::depth set: the depth buffer after the last pass, width * height values, rows
     // top-down (depth.h: Z16/Z24 unorm integers, Z32F float bits); else empty.
     std::vector<uint32_t> depth;
@@ -88,14 +98,16 @@ std::vector<RenderResult> RenderFrames(const std::vector<const PreparedFrame*>& 
                                        const RenderOptions& options);
 
 // The rendering matrix of a frame whose passes are linear in the texels (texel_index.h numbers
-// rows and columns): rendered = A * x + offset, x = texel bytes / 255 over all textures, rows per
-// (pixel, channel). A pass contributes the taps of its unit 0; unit 1 and the vertex colour are
-// folded into the weights. Passes must blend with "none" (the pass replaces the row) or "add"
-// (it adds to it); anything else throws std::invalid_argument. Depth tests are allowed: they
-// only choose which fragments count (fragments hidden by the depth buffer have no entries).
-// In the Linear profile `rendered` equals A * x + offset to float rounding; in the Llvmpipe
-// profile it is the 8-bit frame / 255, within the bound of docs/raster-model.md §9; in the
-// Softpipe profile the 8-bit frame / 255, A * x + offset rounded once (softpipe_render.h).
+// rows and columns): rendered = A * x + offset, x = the texel values over all textures (bytes /
+// 255, or the floats of RGBA32F textures), rows per (pixel, channel). A pass contributes the taps
+// of its unit 0; unit 1 and the vertex colour are folded into the weights. Passes must blend with
+// "none" (the pass replaces the row) or "add" (it adds to it); anything else throws
+// std::invalid_argument. Depth tests are allowed: they only choose which fragments count (fragments
+// hidden by the depth buffer have no entries). In the Linear profile `rendered` equals A * x +
+// offset to float rounding; in the Llvmpipe profile it is the 8-bit frame / 255, within the bound
+// of docs/raster-model.md §9 (an RGBA32F colour buffer: its floats, A * x + offset to float
+// rounding); in the Softpipe profile the 8-bit frame / 255, A * x + offset rounded once
+// (softpipe_render.h).
 struct RenderingMatrix {
     int64_t rows = 0, cols = 0;
     std::vector<int64_t> rowPtr;  // CSR, rows + 1 entries

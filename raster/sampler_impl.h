@@ -21,6 +21,7 @@ namespace {
 
 // True when llvmpipe samples this texture with its 8-bit AoS path.
 bool UsesAosPath(const Texture& t) {
+    if (t.format != TexelFormat::Rgba8) return false;  // float texels: the SoA path only
     const SamplerState& s = t.sampler;
     const bool cube = t.kind == TextureKind::Cube;
     // AoS needs one LOD per quad or equal min/mag filters; cubes with a MIP filter have

@@ -2,8 +2,8 @@
 // shade_impl.h — the fragment stage's loop (fragment.h): 4x2 lane groups of a triangle, the
 // early depth test (depth.h), per-lane interpolation (1/w interpolated, one division,
 // attributes times it), texture units, the fragment colour texture(u0) * texture(u1) * colour,
-// unorm8 conversion and 8-bit blending (or the Linear profile's float blending, or the rows of
-// the rendering matrix).
+// unorm8 conversion and 8-bit blending (or float blending into an RGBA32F colour buffer or the
+// Linear profile's, or the rows of the rendering matrix).
 #pragma once
 
 #include <algorithm>
@@ -103,6 +103,7 @@ void ShadeGroup(const FragmentTarget& tg, const Pass& pass, const LaneAttribs& q
 
     const int co = PassColourAttrib(pass);
     const bool linear = tg.options.profile == Profile::Linear;
+    const bool floatTarget = linear || frame.colorFormat == ColorFormat::Rgba32F;
     for (unsigned set = mask; set; set &= set - 1) {  // the set lanes, no branch per lane
         const int l = std::countr_zero(set);
         const int x = gx + kLaneDx[l], y = gy + kLaneDy[l];
@@ -130,9 +131,11 @@ void ShadeGroup(const FragmentTarget& tg, const Pass& pass, const LaneAttribs& q
                     row.push_back({lane.At(k).texel, static_cast<double>(lane.At(k).weight), mod});
             });
         }
-        if (linear) {
+        if (floatTarget) {  // unclamped
             float* d = &tg.imageF->rgba[4 * pixel];
-            const RgbaF out = BlendF(pass.blend, src, {d[0], d[1], d[2], d[3]});
+            const RgbaF dst{d[0], d[1], d[2], d[3]};
+            const RgbaF out =
+                linear ? BlendF(pass.blend, src, dst) : BlendFloatLlvmpipe(pass.blend, src, dst);
             for (int c = 0; c < 4; ++c) d[c] = out[c];
         } else {
             uint8_t* d = &tg.image8->rgba[4 * pixel];

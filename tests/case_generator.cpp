@@ -1443,6 +1443,50 @@ void Parameterizations(std::vector<NamedCase>* out) {
     }
 }
 
+// RGBA32F variants ------------------------------------------------------------------------------
+
+// `t` with RGBA32F texels: every component a random float in [-0.5, 2.5) (24-bit fractions, so
+// the filter's products and sums round), same shape and sampler.
+Texture FloatTexture(const Texture& t, uint64_t seed) {
+    Texture f = t;
+    f.format = raster::TexelFormat::Rgba32F;
+    Rng rng{seed};
+    for (std::vector<uint8_t>& level : f.levels) {
+        std::vector<float> values(level.size());
+        for (float& v : values) v = rng.Uniform(-0.5f, 2.5f);
+        level = raster::FloatBytes(values);
+    }
+    return f;
+}
+
+// Float variants of a spread of the corpus (every case family): every 3rd case with RGBA32F
+// textures and colour buffer ("f32_"), every 4th with an RGBA32F colour buffer only ("fb32_":
+// 8-bit textures, unclamped float blending), every 5th with RGBA32F textures into RGBA8
+// ("tex32_": float filtering, clamped on output; frames with textures).
+void FloatFormats(std::vector<NamedCase>* out) {
+    const size_t n = out->size();
+    for (size_t i = 0; i < n; ++i) {
+        const NamedCase c = (*out)[i];
+        auto floatTextures = [&](Frame f) {
+            for (size_t k = 0; k < f.textures.size(); ++k)
+                f.textures[k] = FloatTexture(f.textures[k], 1000 * i + k);
+            return f;
+        };
+        if (i % 3 == 0) {
+            Frame f = floatTextures(c.frame);
+            f.colorFormat = raster::ColorFormat::Rgba32F;
+            out->push_back({"f32_" + c.name, std::move(f)});
+        }
+        if (i % 4 == 1) {
+            Frame f = c.frame;
+            f.colorFormat = raster::ColorFormat::Rgba32F;
+            out->push_back({"fb32_" + c.name, std::move(f)});
+        }
+        if (i % 5 == 2 && !c.frame.textures.empty())
+            out->push_back({"tex32_" + c.name, floatTextures(c.frame)});
+    }
+}
+
 }  // namespace
 
 Frame LayoutSphere(runtime::Parameterization p, int size, const SamplerState& sampler, int rings,
@@ -1481,6 +1525,7 @@ std::vector<NamedCase> ConformanceCases() {
     Anisotropy(&out);
     Extremes(&out);
     Parameterizations(&out);
+    FloatFormats(&out);
     return out;
 }
 

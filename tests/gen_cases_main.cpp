@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 // gen_cases — writes the conformance corpus (case_generator.h) as case files, one per case, and
-// the benchmark frame as bench.json:  gen_cases OUTDIR [--bench-only]
+// the benchmark frame as bench.json:  gen_cases OUTDIR [--bench-only | --rgba8-only]
+// (--rgba8-only: the cases whose textures and colour buffer are all RGBA8, what the softpipe
+// profile draws).
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -11,11 +13,12 @@
 
 int main(int argc, char** argv) {
     if (argc < 2) {
-        std::fprintf(stderr, "usage: gen_cases OUTDIR [--bench-only]\n");
+        std::fprintf(stderr, "usage: gen_cases OUTDIR [--bench-only | --rgba8-only]\n");
         return 2;
     }
     const std::filesystem::path dir = argv[1];
     const bool benchOnly = argc > 2 && std::strcmp(argv[2], "--bench-only") == 0;
+    const bool rgba8Only = argc > 2 && std::strcmp(argv[2], "--rgba8-only") == 0;
     std::filesystem::create_directories(dir);
     auto write = [&](const std::string& name, const pem::raster::Frame& f) {
         std::ofstream(dir / (name + ".json")) << pem::conformance::CaseToJson(f);
@@ -25,6 +28,9 @@ int main(int argc, char** argv) {
     if (benchOnly) return 0;
     int n = 0;
     for (const auto& c : pem::test::ConformanceCases()) {
+        bool rgba8 = c.frame.colorFormat == pem::raster::ColorFormat::Rgba8;
+        for (const auto& t : c.frame.textures) rgba8 &= t.format == pem::raster::TexelFormat::Rgba8;
+        if (rgba8Only && !rgba8) continue;
         write(c.name, c.frame);
         ++n;
     }

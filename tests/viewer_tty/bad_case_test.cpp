@@ -218,6 +218,22 @@ TEST(BadCase, Units) {
     ExpectError(ErrorOf(j.dump()), "passes[0].cubemap: cube 7 out of range (2 cubemaps)");
 }
 
+TEST(BadCase, Formats) {
+    ExpectError(ErrorWith("/color_format", "rgb10"), "color_format: unknown value \"rgb10\"");
+    ExpectError(ErrorWith("/cubemaps/0/internal_format", "rgba16f"),
+                "cubemaps[0].internal_format: unknown value \"rgba16f\"");
+    // Explicit RGBA32F texels: 16 bytes a texel, each float finite.
+    ExpectError(ErrorWith("/textures2d/0/internal_format", "rgba32f"),
+                "textures2d[0].texels.images[0]: expected 32 bytes, got 8");
+    json j = BaseCase();
+    j["textures2d"][0]["internal_format"] = "rgba32f";
+    j["textures2d"][0]["height"] = 1;
+    j["textures2d"][0]["width"] = 1;
+    j["textures2d"][0]["texels"]["images"] = {"AAAAAAAAAAAAAIB/AAAAAA=="};  // +Inf in component 2
+    ExpectError(ErrorOf(j.dump()),
+                "textures2d[0].texels.images[0]: texel 0 component 2 is not a finite float");
+}
+
 TEST(BadCase, Depth) {
     ExpectError(ErrorWith("/depth", "z24"), "depth: expected an object");
     ExpectError(ErrorWith("/depth", json{{"clear", 0.5}}), "depth.format: missing key");

@@ -110,7 +110,10 @@ int RunRaster(const RasterArgs& args) {
     }
     WriteOutputs(args, a, result.image8);
 
-    const auto& px = result.image8.rgba;
+    // The identity: the colour buffer's bytes (RGBA32F: its floats, little-endian).
+    const std::vector<uint8_t> px = prepared.frame().colorFormat == raster::ColorFormat::Rgba32F
+                                        ? raster::FloatBytes(result.imageF.rgba)
+                                        : result.image8.rgba;
     std::printf("sha256: %s\n", base::Sha256Hex(px.data(), px.size()).c_str());
     if (args.repeat > 0) std::printf("frame_ms_median: %.3f\n", Median(ms));
     return 0;

@@ -179,4 +179,11 @@ std::vector<std::vector<uint8_t>> GenerateTexels(raster::TextureKind kind, int w
     return levels;
 }
 
+std::vector<uint8_t> FloatLevelFromBytes(const std::vector<uint8_t>& bytes) {
+    std::vector<float> values(bytes.size());
+    for (size_t i = 0; i < bytes.size(); ++i)
+        values[i] = (static_cast<float>(bytes[i]) - 64.0f) / 64.0f;
+    return raster::FloatBytes(values);
+}
+
 }  // namespace pem::conformance

@@ -42,8 +42,12 @@ struct TexelGen {
     int alpha = -1;  // 0..255 fixed; -1: random (random gens) or per-level default (gradient)
 };
 
-// Levels of a texture of `kind` with level-0 size width x height and `numLevels` levels.
+// Levels of a texture of `kind` with level-0 size width x height and `numLevels` levels, RGBA8.
 std::vector<std::vector<uint8_t>> GenerateTexels(raster::TextureKind kind, int width, int height,
                                                  int numLevels, const TexelGen& gen);
+
+// The RGBA32F level a generator gives for RGBA8 level `bytes`: each byte b becomes the float
+// (b - 64) / 64 (exact: -1 .. 2.984375, negative and above 1 alike).
+std::vector<uint8_t> FloatLevelFromBytes(const std::vector<uint8_t>& bytes);
 
 }  // namespace pem::conformance

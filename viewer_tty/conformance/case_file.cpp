@@ -103,6 +103,15 @@ TexelGen ParseTexelGen(const json& obj, const std::string& where) {
     return gen;
 }
 
+// Every float of an RGBA32F level is finite.
+void CheckFinite(const std::vector<uint8_t>& level, const std::string& where) {
+    const std::vector<float> values = raster::FloatsFromBytes(level);
+    for (size_t i = 0; i < values.size(); ++i)
+        if (!std::isfinite(values[i]))
+            Fail(where, "texel " + std::to_string(i / 4) + " component " + std::to_string(i % 4) +
+                            " is not a finite float");
+}
+
 // One explicit image string, decoded and checked against its expected byte count.
 std::vector<uint8_t> DecodeImage(const json& v, const std::string& where, bool base64,
                                  size_t expectedBytes) {
@@ -128,7 +137,8 @@ std::vector<std::vector<uint8_t>> ParseExplicitTexels(const json& obj, const std
     std::vector<std::vector<uint8_t>> levels;
     for (int l = 0; l < numLevels; ++l) {
         const std::string levelWhere = Index(imagesWhere, size_t(l));
-        const size_t faceBytes = size_t(tex.LevelWidth(l)) * size_t(tex.LevelHeight(l)) * 4;
+        const size_t faceBytes =
+            size_t(tex.LevelWidth(l)) * size_t(tex.LevelHeight(l)) * size_t(tex.TexelBytes());
         const json& entry = images[size_t(l)];
         if (tex.kind == TextureKind::Tex2D && entry.is_string()) {
             levels.push_back(DecodeImage(entry, levelWhere, encoding == "base64", faceBytes));
@@ -146,15 +156,21 @@ std::vector<std::vector<uint8_t>> ParseExplicitTexels(const json& obj, const std
         }
         levels.push_back(std::move(level));
     }
+    if (tex.format == raster::TexelFormat::Rgba32F)
+        for (size_t l = 0; l < levels.size(); ++l) CheckFinite(levels[l], Index(imagesWhere, l));
     return levels;
 }
 
 std::vector<std::vector<uint8_t>> ParseTexels(const json& v, const std::string& where,
                                               const Texture& tex, int numLevels) {
     const json& obj = AsObject(v, where);
-    if (Find(obj, "gen"))
-        return GenerateTexels(tex.kind, tex.width, tex.height, numLevels,
-                              ParseTexelGen(obj, where));
+    if (Find(obj, "gen")) {
+        std::vector<std::vector<uint8_t>> levels =
+            GenerateTexels(tex.kind, tex.width, tex.height, numLevels, ParseTexelGen(obj, where));
+        if (tex.format == raster::TexelFormat::Rgba32F)
+            for (std::vector<uint8_t>& level : levels) level = FloatLevelFromBytes(level);
+        return levels;
+    }
     if (Find(obj, "encoding")) return ParseExplicitTexels(obj, where, tex, numLevels);
     Fail(where, "missing key \"gen\" or \"encoding\"");
 }
@@ -176,6 +192,7 @@ Texture ParseTexture(const json& v, const std::string& where, TextureKind kind) 
     const int numLevels = IntOr(obj, where, "levels", maxLevels, 1, maxLevels);
     // Step 2: sampler state and texels.
     tex.sampler = ParseSampler(obj, where, kind);
+    tex.format = EnumOr(obj, where, "internal_format", kTexelFormatNames, tex.format);
     tex.levels = ParseTexels(Require(obj, where, "texels"), Key(where, "texels"), tex, numLevels);
     return tex;
 }
@@ -345,6 +362,7 @@ Frame ParseFrame(const json& root) {
     // Step 1: framebuffer.
     frame.width = static_cast<int>(AsInt(Require(root, "", "width"), "width", 1, kMaxSize));
     frame.height = static_cast<int>(AsInt(Require(root, "", "height"), "height", 1, kMaxSize));
+    frame.colorFormat = EnumOr(root, "", "color_format", kColorFormatNames, frame.colorFormat);
     frame.clear = ParseClear(root);
     frame.depthClamp = BoolOr(root, "", "depth_clamp", false);
     frame.depth = ParseDepth(root);

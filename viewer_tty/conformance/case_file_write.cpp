@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: MIT
 // case_file_write.cpp — CaseToJson: a Frame as a gl_ref_case/1 (superset) file.
 // Conventions: every key written explicitly (`depth` and `depth_test` only when present, their
-// absence being meaningful); texels as base64; floats as JSON numbers holding the
-// float's exact double value, printed as the shortest repr that reads back to that double;
+// absence being meaningful; `color_format` and `internal_format` only when not rgba8, so a
+// plain gl_ref_case/1 frame is written as before); texels as base64; floats as JSON numbers holding
+// the float's exact double value, printed as the shortest repr that reads back to that double;
 // arrays of scalars on one line, everything else indented by 2.
 // Not here: reading (case_file.cpp).
 #include <nlohmann/json.hpp>
@@ -55,6 +56,8 @@ Json TextureJson(const Texture& tex) {
     j["min_lod"] = Exact(s.minLod);
     j["max_lod"] = Exact(s.maxLod);
     j["max_anisotropy"] = Exact(s.maxAnisotropy);
+    if (tex.format != raster::TexelFormat::Rgba8)
+        j["internal_format"] = NameOf(kTexelFormatNames, tex.format);
     // Step 3: texels, one base64 string per (level, face).
     Json images = Json::array();
     for (int l = 0; l < tex.NumLevels(); ++l) {
@@ -154,6 +157,8 @@ std::string CaseToJson(const raster::Frame& frame) {
     j["format"] = "gl_ref_case/1";
     j["width"] = frame.width;
     j["height"] = frame.height;
+    if (frame.colorFormat != raster::ColorFormat::Rgba8)
+        j["color_format"] = NameOf(kColorFormatNames, frame.colorFormat);
     j["clear"] = frame.clear;
     j["depth_clamp"] = frame.depthClamp;
     if (frame.depth)

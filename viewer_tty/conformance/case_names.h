@@ -1,9 +1,8 @@
 // SPDX-License-Identifier: MIT
 // case_names.h — the spelling of every enum value in gl_ref_case/1 files (filters, wraps, blend
-// factors and equations, depth formats and functions), shared by the case reader and writer so
-// the two cannot drift apart.
-// Conventions: lowercase GL names without the GL_ prefix, e.g. "linear_mipmap_nearest".
-// Not here: parsing or error reporting (case_file.cpp).
+// factors and equations, texel and colour formats, depth formats and functions), shared by the case
+// reader and writer so the two cannot drift apart. Conventions: lowercase GL names without the GL_
+// prefix, e.g. "linear_mipmap_nearest". Not here: parsing or error reporting (case_file.cpp).
 #pragma once
 
 #include <array>
@@ -63,6 +62,17 @@ inline constexpr std::array<NameTable<raster::BlendEquation>, 5> kBlendEquationN
     {"reverse_subtract", raster::BlendEquation::ReverseSubtract},
     {"min", raster::BlendEquation::Min},
     {"max", raster::BlendEquation::Max},
+}};
+
+// A texture's `internal_format` and the frame's `color_format`.
+inline constexpr std::array<NameTable<raster::TexelFormat>, 2> kTexelFormatNames = {{
+    {"rgba8", raster::TexelFormat::Rgba8},
+    {"rgba32f", raster::TexelFormat::Rgba32F},
+}};
+
+inline constexpr std::array<NameTable<raster::ColorFormat>, 2> kColorFormatNames = {{
+    {"rgba8", raster::ColorFormat::Rgba8},
+    {"rgba32f", raster::ColorFormat::Rgba32F},
 }};
 
 inline constexpr std::array<NameTable<raster::DepthFormat>, 3> kDepthFormatNames = {{

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // gl_reference.cpp — RenderWithGl: upload textures, build one program per pass shape, draw every
-// pass into an RGBA8 renderbuffer (with a depth renderbuffer when the frame has one), read back,
-// flip rows to top-down.
+// pass into an RGBA8 or RGBA32F renderbuffer (with a depth renderbuffer when the frame has one),
+// read back, flip rows to top-down.
 // Conventions: attribute locations 0 a_pos, 1 a_c0, 2 a_c1, 3 a_col; sampler u<k> on texture
 // unit k; vertex buffers hold the case's interleaved floats (4 + 3*units + 4 per vertex).
 // Not here: context creation (gl_context.cpp); no stencil, scissor, culling or dither.
@@ -102,12 +102,14 @@ GLuint UploadTexture(const Texture& tex) {
     glGenTextures(1, &name);
     glBindTexture(target, name);
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    const bool isFloat = tex.format == raster::TexelFormat::Rgba32F;
     for (int l = 0; l < tex.NumLevels(); ++l) {
         const int w = tex.LevelWidth(l), h = tex.LevelHeight(l);
-        const size_t faceBytes = size_t(w) * size_t(h) * 4;
+        const size_t faceBytes = size_t(w) * size_t(h) * size_t(tex.TexelBytes());
         for (int f = 0; f < tex.Faces(); ++f) {
             const GLenum faceTarget = cube ? GLenum(GL_TEXTURE_CUBE_MAP_POSITIVE_X + f) : target;
-            glTexImage2D(faceTarget, l, GL_RGBA8, w, h, 0, GL_RGBA, GL_UNSIGNED_BYTE,
+            glTexImage2D(faceTarget, l, isFloat ? GL_RGBA32F : GL_RGBA8, w, h, 0, GL_RGBA,
+                         isFloat ? GL_FLOAT : GL_UNSIGNED_BYTE,
                          tex.levels[size_t(l)].data() + size_t(f) * faceBytes);
         }
     }
@@ -326,7 +328,9 @@ void SetupFramebuffer(const Frame& frame, GlObjects* objects) {
                       std::to_string(maxSize));
     glGenRenderbuffers(1, &objects->renderbuffer);
     glBindRenderbuffer(GL_RENDERBUFFER, objects->renderbuffer);
-    glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, frame.width, frame.height);
+    const bool isFloat = frame.colorFormat == raster::ColorFormat::Rgba32F;
+    glRenderbufferStorage(GL_RENDERBUFFER, isFloat ? GL_RGBA32F : GL_RGBA8, frame.width,
+                          frame.height);
     glGenFramebuffers(1, &objects->framebuffer);
     glBindFramebuffer(GL_FRAMEBUFFER, objects->framebuffer);
     glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER,
@@ -342,20 +346,38 @@ void SetupFramebuffer(const Frame& frame, GlObjects* objects) {
                                   objects->depthRenderbuffer);
     }
     if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-        throw GlError(frame.depth ? "RGBA8 + depth framebuffer incomplete"
-                                  : "RGBA8 framebuffer incomplete");
+        throw GlError(
+            std::string(isFloat ? "RGBA32F" : "RGBA8") +
+            (frame.depth ? " + depth framebuffer incomplete" : " framebuffer incomplete"));
     // Fixed state of gl_ref_case/1.
     glViewport(0, 0, frame.width, frame.height);
     glDepthRange(0.0, 1.0);
     for (GLenum cap : {GL_DEPTH_TEST, GL_STENCIL_TEST, GL_SCISSOR_TEST, GL_CULL_FACE, GL_DITHER,
                        GL_FRAMEBUFFER_SRGB, GL_MULTISAMPLE})
         glDisable(cap);
+    // Core profile: fragment colours are clamped for fixed-point buffers only (GL_FIXED_ONLY).
+    glClampColor(GL_CLAMP_READ_COLOR, GL_FALSE);
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     if (frame.depthClamp)
         glEnable(GL_DEPTH_CLAMP);
     else
         glDisable(GL_DEPTH_CLAMP);
     CheckGl("framebuffer setup");
+}
+
+// An RGBA32F colour buffer's floats, rows top-down.
+raster::ImageF ReadFloatPixelsTopDown(const Frame& frame) {
+    raster::ImageF image{frame.width, frame.height, {}};
+    const size_t rowFloats = size_t(frame.width) * 4;
+    std::vector<float> bottomUp(rowFloats * size_t(frame.height));
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    glReadPixels(0, 0, frame.width, frame.height, GL_RGBA, GL_FLOAT, bottomUp.data());
+    CheckGl("glReadPixels(GL_FLOAT)");
+    image.rgba.resize(bottomUp.size());
+    for (size_t y = 0; y < size_t(frame.height); ++y)
+        std::copy_n(bottomUp.data() + (size_t(frame.height) - 1 - y) * rowFloats, rowFloats,
+                    image.rgba.data() + y * rowFloats);
+    return image;
 }
 
 raster::Image8 ReadPixelsTopDown(const Frame& frame) {
@@ -421,7 +443,7 @@ std::string GlRendererString() {
 }
 
 raster::Image8 RenderWithGl(const Frame& frame, int repeat, std::vector<double>* frameMs,
-                            std::vector<uint32_t>* depth) {
+                            std::vector<uint32_t>* depth, raster::ImageF* floatPixels) {
     RequireContext();
     GlObjects objects;
     // Step 1: untimed setup — framebuffer, textures, programs, vertex arrays.
@@ -444,6 +466,10 @@ raster::Image8 RenderWithGl(const Frame& frame, int repeat, std::vector<double>*
     CheckGl("draw");
     // Step 3: read back.
     if (depth) *depth = frame.depth ? ReadDepthTopDown(frame) : std::vector<uint32_t>{};
+    if (floatPixels)
+        *floatPixels = frame.colorFormat == raster::ColorFormat::Rgba32F
+                           ? ReadFloatPixelsTopDown(frame)
+                           : raster::ImageF{};
     return ReadPixelsTopDown(frame);
 }
 

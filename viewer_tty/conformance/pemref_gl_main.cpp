@@ -50,10 +50,15 @@ int Run(const Options& options) {
     if (options.info) std::cerr << "GL: " << pem::conformance::GlRendererString() << "\n";
     // Step 3: render, hash, report.
     std::vector<double> frameMs;
-    const pem::raster::Image8 image =
-        pem::conformance::RenderWithGl(frame, std::max(1, options.repeat), &frameMs);
+    pem::raster::ImageF floats;
+    const pem::raster::Image8 image = pem::conformance::RenderWithGl(
+        frame, std::max(1, options.repeat), &frameMs, nullptr, &floats);
     if (!options.outPath.empty()) pem::base::WritePng(options.outPath, image);
-    std::cout << "sha256: " << pem::base::Sha256Hex(image.rgba.data(), image.rgba.size()) << "\n";
+    // The identity: the colour buffer's bytes (RGBA32F: its floats, little-endian).
+    const std::vector<uint8_t> bytes = frame.colorFormat == pem::raster::ColorFormat::Rgba32F
+                                           ? pem::raster::FloatBytes(floats.rgba)
+                                           : image.rgba;
+    std::cout << "sha256: " << pem::base::Sha256Hex(bytes.data(), bytes.size()) << "\n";
     if (options.repeat > 0) {
         char text[64];
         std::snprintf(text, sizeof text, "%.3f", Median(frameMs));
