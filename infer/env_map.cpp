@@ -63,6 +63,23 @@ std::vector<raster::Texture> ToTextures8(const EnvMapF& map, const raster::Sampl
     return out;
 }
 
+std::vector<raster::Texture> ToTextures(const EnvMapF& map, const raster::SamplerState& sampler,
+                                        raster::TexelFormat format) {
+    std::vector<raster::Texture> out = ToTextures8(map, sampler);
+    if (format == raster::TexelFormat::Rgba8) return out;
+    for (size_t c = 0; c < out.size(); ++c) {
+        out[c].format = format;
+        for (size_t l = 0; l < map.levels.size(); ++l) {
+            // Step: this chart's share of the level, as floats.
+            const size_t n = map.levels[l].size() / out.size();
+            out[c].levels[l] = raster::FloatBytes(
+                {map.levels[l].begin() + static_cast<std::ptrdiff_t>(c * n),
+                 map.levels[l].begin() + static_cast<std::ptrdiff_t>((c + 1) * n)});
+        }
+    }
+    return out;
+}
+
 std::vector<raster::Texture> Texture8FromSolution(const Vector& x, const TexelLayout& layout,
                                                   const raster::SamplerState& sampler) {
     return ToTextures8(EnvMapFromSolution(x, layout), sampler);

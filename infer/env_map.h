@@ -9,9 +9,9 @@
 // (j * w_l + i) * 4; n_l = max(1, size >> l) (h_l likewise from height). A map of a two-image
 // layout (runtime/parameterization.h) has two charts, stored as a 2D map's faces: level l holds
 // chart 0's w_l * h_l texels, then chart 1's. The solver's local order (regularizer.h), so its
-// column 4 * texel + c maps to element 4 * texel + c of the concatenated levels. The 8-bit copy
-// is what the hardware gets, one texture per chart (a cube: one): RNE(clamp(v, 0, 1) * 255)
-// per component.
+// column 4 * texel + c maps to element 4 * texel + c of the concatenated levels. The hardware
+// gets one texture per chart (a cube: one): the 8-bit copy RNE(clamp(v, 0, 1) * 255) per
+// component, or the floats themselves (RGBA32F).
 // Not here: files (pem_file.h).
 #pragma once
 
@@ -63,5 +63,10 @@ std::vector<raster::Texture> Texture8FromSolution(const Vector& x, const TexelLa
 // texture per chart, and the inverse conversion (bytes / 255) of a map's textures.
 std::vector<raster::Texture> ToTextures8(const EnvMapF& map, const raster::SamplerState& sampler);
 EnvMapF FromTextures8(std::span<const raster::Texture> textures);
+
+// The hardware's copy in `format`: ToTextures8, or RGBA32F textures holding the floats as they
+// are.
+std::vector<raster::Texture> ToTextures(const EnvMapF& map, const raster::SamplerState& sampler,
+                                        raster::TexelFormat format);
 
 }  // namespace pem::infer

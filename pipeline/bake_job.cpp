@@ -143,9 +143,10 @@ size_t WriteOutputs(const BakeJobOptions& o, const TraceManifest& trace, int n) 
         rec.leftOut.insert(rec.leftOut.end(), s.leftOut.begin(), s.leftOut.end());
     }
     WriteInferJson(rec);
-    WritePemManifest(PemManifestFor(trace, rec.dir, o.infer.res, o.infer.hdr, {}, o.infer.hardware,
-                                    std::max(o.infer.res, o.infer.maxRes),
-                                    o.infer.parameterization));
+    PemManifest m = PemManifestFor(trace, rec.dir, o.infer.res, o.infer.hdr, {}, o.infer.hardware,
+                                   std::max(o.infer.res, o.infer.maxRes), o.infer.parameterization);
+    m.tessT = o.infer.tessT;
+    WritePemManifest(m);
     return rec.maps.size();
 }
 

@@ -62,7 +62,7 @@ void WriteMapFiles(const infer::EnvMapF& map, const raster::SamplerState& sample
 
 // K, h and x of one solve in Matrix Market format, with the figures scipy's check needs.
 void ExportSystem(const std::string& exportDir, const MapReport& rep,
-                  const infer::LinearSystem& sys, const Vector& x, bool hdr) {
+                  const infer::LinearSystem& sys, const Vector& x, const char* bounds) {
     char prefix[64];
     std::snprintf(prefix, sizeof prefix, "/v%03d_g%d_%s", rep.view, rep.group, rep.name.c_str());
     const std::string stem = exportDir + prefix;
@@ -70,7 +70,7 @@ void ExportSystem(const std::string& exportDir, const MapReport& rep,
     base::WriteVectorMarket(stem + "_h.mtx", sys.h, "");
     base::WriteVectorMarket(stem + "_x.mtx", x, "");
     base::WriteTextAtomic(stem + ".json", json{{"objective", rep.objective},
-                                               {"bounds", hdr ? "hdr" : "unit"},
+                                               {"bounds", bounds},
                                                {"iterations", rep.iterations},
                                                {"solve_seconds", rep.solveSeconds},
                                                {"rows", rep.rows},
@@ -97,6 +97,10 @@ struct MapInput {
 };
 
 // Rows of b appended to a (the same columns).
+bool FloatMaps(const InferJobOptions& opt) {
+    return opt.hardware.format == raster::TexelFormat::Rgba32F;
+}
+
 void AppendRows(raster::RenderingMatrix* a, const raster::RenderingMatrix& b) {
     const int64_t base = a->rowPtr.back();
     for (size_t r = 1; r < b.rowPtr.size(); ++r) a->rowPtr.push_back(base + b.rowPtr[r]);
@@ -143,10 +147,11 @@ std::vector<uint32_t> CoveredCells(const MapInput& in) {
 }
 
 // Target rows of the listed subpixels, 4 each: the layer un-premultiplied by coverage, RGB in
-// the maps' units (radiance / scale), clamped into [0, 1] for 8-bit maps (what they can reach);
-// weight · coverage.
-void AppendTarget(const MapInput& in, const std::vector<uint32_t>& cells, double scale, bool hdr,
-                  infer::Target* t) {
+// the maps' units (radiance / scale), clamped into [0, 1] (what 8-bit maps can reach; for float
+// maps what the display shows, so that the light sources' radiance of thousands does not
+// outweigh the rest of the fit) unless `unclamped` (HDR); weight · coverage.
+void AppendTarget(const MapInput& in, const std::vector<uint32_t>& cells, double scale,
+                  bool unclamped, infer::Target* t) {
     const int width = in.coverage->width;
     for (uint32_t cell : cells) {
         const int x = static_cast<int>(cell) % width, y = static_cast<int>(cell) / width;
@@ -154,7 +159,7 @@ void AppendTarget(const MapInput& in, const std::vector<uint32_t>& cells, double
         for (size_t c = 0; c < 4; ++c) {
             const double v =
                 static_cast<double>(in.layer->At(x, y)[c]) / cov / (c < 3 ? scale : 1.0);
-            t->b.push_back(hdr ? v : std::clamp(v, 0.0, 1.0));
+            t->b.push_back(unclamped ? v : std::clamp(v, 0.0, 1.0));
             t->confidence.push_back(in.weight * cov);
         }
     }
@@ -263,24 +268,30 @@ int ResolutionAccessed(const std::vector<double>& share, int minRes, int maxRes)
 
 // Solving one map ----------------------------------------------------------------------------
 
-// The 8-bit copy of a map through the target profile on the sample's own rows of the mask,
-// subpixel by subpixel: the error the hardware shows.
+// The hardware's copy of a map (MapHardware::format) through the target profile on the
+// sample's own rows of the mask, subpixel by subpixel: the error the hardware shows (8-bit
+// frames; float maps: the RGBA32F frame).
 double Rmse8(const infer::EnvMapF& m, const StackedRows& s, const infer::LinearSystem& sys,
-             const std::string& profile, int threads) {
-    const std::vector<raster::Texture> tex8 = infer::ToTextures8(m, s.frame.textures[0].sampler);
-    raster::RenderOptions fo = raster::ProfileNamed(profile).options;
+             const runtime::MapHardware& hardware, int threads) {
+    const std::vector<raster::Texture> tex =
+        infer::ToTextures(m, s.frame.textures[0].sampler, hardware.format);
+    const bool floats = hardware.format == raster::TexelFormat::Rgba32F;
+    raster::RenderOptions fo = raster::ProfileNamed(hardware.profile).options;
     fo.threads = threads;
     double sum = 0.0, weight = 0.0;
     for (const OwnRows& own : s.own) {
         raster::Frame f8 = own.frame;
-        std::copy(tex8.begin(), tex8.end(), f8.textures.begin());
+        std::copy(tex.begin(), tex.end(), f8.textures.begin());
+        if (floats) f8.colorFormat = raster::ColorFormat::Rgba32F;
         const raster::RenderResult rr = raster::Render(raster::PreparedFrame(f8), fo);
         const int64_t last = own.first + 4 * static_cast<int64_t>(own.cells.size());
         for (int64_t r : sys.imageRowOf) {
             if (r < own.first || r >= last) continue;  // this observation's rows
             const size_t cell = own.cells[static_cast<size_t>((r - own.first) / 4)];
-            const double v = rr.image8.rgba[4 * cell + static_cast<size_t>((r - own.first) % 4)];
-            const double d = v / 255.0 - s.target.b[static_cast<size_t>(r)];
+            const size_t at = 4 * cell + static_cast<size_t>((r - own.first) % 4);
+            const double v =
+                floats ? static_cast<double>(rr.imageF.rgba[at]) : rr.image8.rgba[at] / 255.0;
+            const double d = v - s.target.b[static_cast<size_t>(r)];
             weight += s.target.confidence[static_cast<size_t>(r)];
             sum += s.target.confidence[static_cast<size_t>(r)] * d * d;
         }
@@ -318,7 +329,9 @@ MapReport SolveMap(const std::vector<MapInput>& inputs, const InferJobOptions& o
     // Step 2: the solve.
     infer::SolveOptions so = opt.solve;
     so.threads = opt.threads;
-    so.bounds = opt.hdr ? infer::Bounds::Hdr() : infer::Bounds::Unit();
+    so.bounds = FloatMaps(opt) ? infer::Bounds::None()
+                : opt.hdr      ? infer::Bounds::Hdr()
+                               : infer::Bounds::Unit();
     const infer::SolveResult res = infer::SolveIterative(
         sys, infer::SplatGuess(sys, so.bounds.lo, so.bounds.hi, opt.threads), so);
     rep.solveSeconds = res.seconds, rep.iterations = res.iterations;
@@ -335,7 +348,7 @@ MapReport SolveMap(const std::vector<MapInput>& inputs, const InferJobOptions& o
     rep.fillSeconds = Since(tFill);
     // Step 4: rmse_8bit (and the direct optimum's, when asked and small enough).
     const auto tRender = Clock::now();
-    rep.rmse8 = Rmse8(map, s, sys, opt.hardware.profile, opt.threads);
+    rep.rmse8 = Rmse8(map, s, sys, opt.hardware, opt.threads);
     rep.renderSeconds = Since(tRender);
     if (opt.direct && sys.Cols() <= opt.directMaxCols) {
         const infer::SolveResult d =
@@ -343,12 +356,16 @@ MapReport SolveMap(const std::vector<MapInput>& inputs, const InferJobOptions& o
         rep.directSeconds = d.seconds;
         rep.directRmse8 =
             Rmse8(infer::EnvMapFromSolution(infer::FillUnobserved(sys, d.x), sys.layout), s, sys,
-                  opt.hardware.profile, opt.threads);
+                  opt.hardware, opt.threads);
     }
     // Step 5: files.
     const auto tWrite = Clock::now();
     WriteMapFiles(map, s.frame.textures[0].sampler, res, dir + "/" + rep.name, opt.threads);
-    if (!opt.exportDir.empty()) ExportSystem(opt.exportDir, rep, sys, res.x, opt.hdr);
+    if (!opt.exportDir.empty())
+        ExportSystem(opt.exportDir, rep, sys, res.x,
+                     FloatMaps(opt) ? "none"
+                     : opt.hdr      ? "hdr"
+                                    : "unit");
     rep.writeSeconds = Since(tWrite);
     return rep;
 }
@@ -618,8 +635,10 @@ void WriteInferOutputs(const InferJobOptions& o, const InferJobResult& r) {
     rec.maps = r.maps;
     rec.leftOut = r.leftOut;
     WriteInferJson(rec);
-    WritePemManifest(PemManifestFor(r.trace, o.outDir, o.res, o.hdr, o.views, o.hardware,
-                                    std::max(o.res, o.maxRes), o.parameterization));
+    PemManifest m = PemManifestFor(r.trace, o.outDir, o.res, o.hdr, o.views, o.hardware,
+                                   std::max(o.res, o.maxRes), o.parameterization);
+    m.tessT = o.tessT;
+    WritePemManifest(m);
 }
 
 }  // namespace pem::pipeline

@@ -78,10 +78,10 @@ struct InferJobOptions {
                                   .lodBias = kDefaultLodBias};
     // The maps' layout (runtime/parameterization.h); a 2D layout needs res >= 2.
     runtime::Parameterization parameterization = runtime::Parameterization::Cube;
-    bool hdr = false;              // float radiance, bounds [0, inf)
-    double tessT = 5.0;            // tessellation t in subpixels (1 / spp pixels)
-    std::vector<int> views;        // empty: all
-    bool single = false;           // also the single-layer map (`single`, both terms)
+    bool hdr = false;                       // float radiance, bounds [0, inf)
+    double tessT = runtime::kDefaultTessT;  // tessellation t in subpixels (1 / spp pixels)
+    std::vector<int> views;                 // empty: all
+    bool single = false;                    // also the single-layer map (`single`, both terms)
     int neighbours = 0;            // samples on each side in the simultaneous solve (hybrid §4.3)
     double neighbourWeight = 0.5;  // their rows' weight factor
     bool direct = false;           // also solve with the direct oracle (when it fits)

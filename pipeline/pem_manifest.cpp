@@ -2,6 +2,8 @@
 // pem_manifest.cpp — manifest.json (pem_manifest.h).
 #include "pipeline/pem_manifest.h"
 
+#include <algorithm>
+
 #include "base/atomic_file.h"
 #include "base/input_error.h"
 #include "pipeline/json_values.h"
@@ -17,28 +19,34 @@ json ManifestJson(const PemManifest& m) {
     json views = json::array(), groups = json::array();
     for (const raster::Camera& c : m.views) views.push_back(CameraJson(c));
     for (const runtime::LensGroupEm& g : m.groups) groups.push_back(LensGroupJson(g));
-    return {{"format", kFormat},
-            {"version", kVersion},
-            {"scene", m.scene},
-            {"scene_given", m.sceneGiven},
-            {"trace_dir", m.traceDir},
-            {"trace_dir_given", m.traceDirGiven},
-            {"size", {m.width, m.height}},
-            {"spp", m.spp},
-            {"res", m.res},
-            {"max_res", m.maxRes},
-            {"profile", m.hardware.profile},
-            {"max_anisotropy", m.hardware.maxAnisotropy},
-            {"radiance_scale", m.hardware.radianceScale},
-            {"lod_bias", m.hardware.lodBias},
-            {"parameterization", runtime::ParameterizationName(m.parameterization)},
-            {"full_tree_depth", m.fullTreeDepth},
-            {"min_weight", m.minWeight},
-            {"fresnel", m.fresnel},
-            {"hdr", m.hdr},
-            {"views", views},
-            {"inferred_views", m.inferred},
-            {"lens_groups", groups}};
+    json j = {{"format", kFormat},
+              {"version", kVersion},
+              {"scene", m.scene},
+              {"scene_given", m.sceneGiven},
+              {"trace_dir", m.traceDir},
+              {"trace_dir_given", m.traceDirGiven},
+              {"size", {m.width, m.height}},
+              {"spp", m.spp},
+              {"res", m.res},
+              {"max_res", m.maxRes},
+              {"profile", m.hardware.profile},
+              {"max_anisotropy", m.hardware.maxAnisotropy},
+              {"radiance_scale", m.hardware.radianceScale},
+              {"lod_bias", m.hardware.lodBias},
+              {"parameterization", runtime::ParameterizationName(m.parameterization)},
+              {"full_tree_depth", m.fullTreeDepth},
+              {"min_weight", m.minWeight},
+              {"fresnel", m.fresnel},
+              {"hdr", m.hdr},
+              {"t", m.tessT},
+              {"views", views},
+              {"inferred_views", m.inferred},
+              {"lens_groups", groups}};
+    // RGBA32F maps only (absent: RGBA8, as directories written before the key).
+    if (m.hardware.format != raster::TexelFormat::Rgba8)
+        for (const auto& [name, format] : raster::kTexelFormatNames)
+            if (format == m.hardware.format) j["map_format"] = std::string(name);
+    return j;
 }
 
 void CheckFormat(const json& j) {
@@ -80,6 +88,13 @@ PemManifest ManifestFromJson(const json& j) {
     if (!(m.hardware.lodBias >= -runtime::kMaxLodBias &&
           m.hardware.lodBias <= runtime::kMaxLodBias))
         throw std::runtime_error("lod_bias must lie in [-4, 4]");
+    const std::string format = j.value("map_format", "rgba8");  // absent in older directories
+    const auto* named =
+        std::find_if(raster::kTexelFormatNames.begin(), raster::kTexelFormatNames.end(),
+                     [&](const auto& n) { return n.first == format; });
+    if (named == raster::kTexelFormatNames.end())
+        throw std::runtime_error("unknown map_format '" + format + "' (rgba8 or rgba32f)");
+    m.hardware.format = named->second;
     const std::string layout = j.value("parameterization", "cube");  // absent in older directories
     const auto parameterization = runtime::ParseParameterization(layout);
     if (!parameterization) throw std::runtime_error("unknown parameterization '" + layout + "'");
@@ -90,6 +105,8 @@ PemManifest ManifestFromJson(const json& j) {
     m.minWeight = j.at("min_weight").get<double>();
     m.fresnel = j.at("fresnel").get<std::string>();
     m.hdr = j.at("hdr").get<bool>();
+    m.tessT = j.value("t", runtime::kDefaultTessT);  // absent in older directories
+    if (!(m.tessT >= 0.25 && m.tessT <= 1e4)) throw std::runtime_error("t must lie in [0.25, 1e4]");
     for (const json& v : j.at("views")) m.views.push_back(CameraFromJson(v));
     m.inferred = IntsAt<int>(j, "inferred_views");
     int index = 0;

@@ -32,8 +32,9 @@ struct PemManifest {
     double minWeight = 1e-3;
     std::string fresnel = "exact";
     bool hdr = false;
-    std::vector<raster::Camera> views;  // every viewpoint sample of the trace
-    std::vector<int> inferred;          // the samples with maps
+    double tessT = runtime::kDefaultTessT;  // the hybrid tessellation t of the inference
+    std::vector<raster::Camera> views;      // every viewpoint sample of the trace
+    std::vector<int> inferred;              // the samples with maps
     std::vector<runtime::LensGroupEm> groups;
 };
 

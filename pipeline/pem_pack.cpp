@@ -227,6 +227,9 @@ PackStats PackPem(const std::string& pemDir, const std::string& packFile, const 
         throw base::InputError("--max-error " + std::to_string(opt.map.maxError),
                                "must lie in [0, " + std::to_string(kMaxMapError) + "]");
     const PemManifest m = ReadPemManifest(pemDir);
+    if (m.hardware.format != raster::TexelFormat::Rgba8)
+        throw base::InputError(pemDir + "/" + kManifestJson,
+                               "a pack holds 8-bit maps; these maps are rgba32f (map_format)");
     const std::string packDir = fs::absolute(packFile).parent_path().string();
     PackBuilder b{opt.codec, json::object(), {}};
     PackStats stats;

@@ -37,7 +37,7 @@ class MapCache {
     }
 
   private:
-    // The map's 8-bit copy (one texture per chart): inside the directory, a readable map of the
+    // The map's hardware copy (one texture per chart): inside the directory, a readable map of the
     // manifest's layout at a size it allows (a power of two in [res, max_res]).
     std::vector<raster::Texture> Load(const std::string& path) const {
         CheckInside(manifest_.dir, path);
@@ -50,7 +50,7 @@ class MapCache {
             throw base::InputError(path, std::string("cannot read the map: ") + e.what());
         }
         CheckMapShape(manifest_, map.kind, map.size, map.LevelHeight(0), map.charts, path);
-        return infer::ToTextures8(map, sampler_);
+        return infer::ToTextures(map, sampler_, manifest_.hardware.format);
     }
 
     PemManifest manifest_;
@@ -68,6 +68,7 @@ runtime::MapSet LoadMapSet(const PemManifest& m) {
     set.groups = m.groups;
     set.spp = m.spp;
     set.res = m.res;
+    set.tessT = m.tessT;
     set.hardware = m.hardware;
     set.parameterization = m.parameterization;
     TraceManifest tracing;  // the tracer's options, as the trace read them

@@ -1,12 +1,13 @@
 // SPDX-License-Identifier: MIT
 // pem_set.h — a PEM directory opened for drawing: manifest.json, the scene it was made from and
-// its 8-bit maps, loaded on first use and kept.
+// its maps, loaded on first use and kept.
 //
 //   std::unique_ptr<runtime::Renderer> r = OpenPemDirectory("out/pem", /*threads=*/2);
 //   runtime::RenderedFrame f = r->Render(r->SampleCamera(0), {});
 //
 // Maps: view_v/group_g/<name>.exr (layout.h), read as float and converted to the hardware's
-// 8-bit copy (infer/env_map.h ToTextures8) with the manifest's sampler (trilinear, seamless) and,
+// copy in the manifest's map_format (infer/env_map.h ToTextures: 8-bit, or the floats) with the
+// manifest's sampler (trilinear, seamless) and,
 // for a 2D layout (manifest "parameterization"), the layout's wrap modes; a map of another
 // layout's shape is refused.
 // The scene is found relative to the PEM directory first (pem_manifest.h), so a directory can

@@ -22,6 +22,8 @@
 #include <glm/glm.hpp>
 #include <optional>
 #include <string>
+#include <string_view>
+#include <utility>
 #include <vector>
 
 #include "base/image8.h"
@@ -53,6 +55,12 @@ enum class TextureKind { Cube, Tex2D };
 // or GL_RGBA32F, 16 bytes per texel: four little-endian float32 taken as they are (any value,
 // negative or above 1; llvmpipe samples them on its float path).
 enum class TexelFormat { Rgba8, Rgba32F };
+
+// Their names in case files, PEM manifests and on the command line.
+inline constexpr std::array<std::pair<std::string_view, TexelFormat>, 2> kTexelFormatNames = {{
+    {"rgba8", TexelFormat::Rgba8},
+    {"rgba32f", TexelFormat::Rgba32F},
+}};
 
 // A texture with every MIP level given explicitly (levels[l] has max(1, w>>l) by max(1, h>>l)
 // texels per face; 6 faces for a cube, 1 for 2D). Sizes are powers of two.

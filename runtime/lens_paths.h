@@ -32,6 +32,10 @@
 
 namespace pem::runtime {
 
+// The hybrid tessellation t (subpixels) that inference and rendering use unless told otherwise:
+// maps fit the tessellation they were inferred on (MapSet::tessT), so a renderer draws with it.
+inline constexpr double kDefaultTessT = 5.0;
+
 // The triangles of one lens group as one world-space mesh (objects in group order).
 struct LensMesh {
     std::vector<glm::vec3> positions;

@@ -10,6 +10,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <span>
 
@@ -43,9 +44,18 @@ raster::BlendState PremultipliedOver() {
     return b;
 }
 
+// A frame's value at index i in [0, 1] units: an RGBA8 frame's bytes / 255, or the floats.
+double ValueAt(const raster::Image8& img, size_t i) {
+    return img.rgba[i] / 255.0;
+}
+double ValueAt(const raster::ImageF& img, size_t i) {
+    return static_cast<double>(img.rgba[i]);
+}
+
 // Adds weight · (the mean of the covered subpixels of a k× frame, supersampling.h) to acc at
 // the listed pixels (RGB per listed pixel).
-void Accumulate(const raster::Image8& img, const std::vector<uint8_t>& covered, int width, int k,
+template <class Image>
+void Accumulate(const Image& img, const std::vector<uint8_t>& covered, int width, int k,
                 double weight, const std::vector<uint32_t>& pixels, std::vector<double>* acc) {
     double rgba[4];
     for (size_t p = 0; p < pixels.size(); ++p) {
@@ -54,11 +64,11 @@ void Accumulate(const raster::Image8& img, const std::vector<uint8_t>& covered, 
     }
 }
 
-// Adds weight · frame / 255 at every subpixel of the border pixels to the group's samples
+// Adds weight · frame at every subpixel of the border pixels to the group's samples
 // (silhouettes.h), and marks the covered ones.
-void AccumulateBorder(const raster::Image8& img, const std::vector<uint8_t>& covered, int width,
-                      int k, double weight, const std::vector<glm::ivec2>& border,
-                      GroupSamples* samples) {
+template <class Image>
+void AccumulateBorder(const Image& img, const std::vector<uint8_t>& covered, int width, int k,
+                      double weight, const std::vector<glm::ivec2>& border, GroupSamples* samples) {
     const size_t kk = static_cast<size_t>(k) * static_cast<size_t>(k);
     samples->rgb.resize(border.size() * kk * 3, 0.0);
     samples->covered.resize(border.size() * kk, 0);
@@ -68,7 +78,7 @@ void AccumulateBorder(const raster::Image8& img, const std::vector<uint8_t>& cov
             const size_t i = SubpixelIndex(pixel, width, k, static_cast<int>(s));
             samples->covered[b * kk + s] = covered[i];
             for (size_t c = 0; c < 3; ++c)
-                samples->rgb[3 * (b * kk + s) + c] += weight * (img.rgba[4 * i + c] / 255.0);
+                samples->rgb[3 * (b * kk + s) + c] += weight * ValueAt(img, 4 * i + c);
         }
 }
 
@@ -80,6 +90,7 @@ raster::Texture Shape(const raster::Texture& t) {
     s.width = t.width;
     s.height = t.height;
     s.sampler = t.sampler;
+    s.format = t.format;
     s.levels.resize(t.levels.size());
     return s;
 }
@@ -147,6 +158,9 @@ class FrameBatch {
         frame.height = k_ * camera_.height;
         frame.depthClamp = true;
         frame.depth = kLensDepth;
+        // Float maps are drawn into a float colour buffer (map_set.h MapHardware::format).
+        if (!maps.empty() && maps[0]->format == raster::TexelFormat::Rgba32F)
+            frame.colorFormat = raster::ColorFormat::Rgba32F;
         // A map of a two-image layout is two textures and two passes (parameterization.h).
         const size_t perMap = static_cast<size_t>(MapTextures(parameterization_));
         frame.passes.resize(maps.size() * perMap);  // no-op when copied
@@ -189,15 +203,23 @@ class FrameBatch {
         const std::vector<uint8_t> covered =
             rr.empty() ? std::vector<uint8_t>() : CoveredSubpixels(rr[0].depth, kLensDepth);
         for (size_t f = 0; f < rr.size(); ++f) {
-            Accumulate(rr[f].image8, covered, camera_.width, k_, weights_[f], pixels, acc);
-            if (border)
-                AccumulateBorder(rr[f].image8, covered, camera_.width, k_, weights_[f],
-                                 borderPixels, border);
+            if (frames_[f].colorFormat == raster::ColorFormat::Rgba32F)
+                AddFrame(rr[f].imageF, covered, weights_[f], pixels, acc, borderPixels, border);
+            else
+                AddFrame(rr[f].image8, covered, weights_[f], pixels, acc, borderPixels, border);
         }
         stats_->rasterSeconds += Since(t0);
     }
 
   private:
+    template <class Image>
+    void AddFrame(const Image& img, const std::vector<uint8_t>& covered, double weight,
+                  const std::vector<uint32_t>& pixels, std::vector<double>* acc,
+                  const std::vector<glm::ivec2>& borderPixels, GroupSamples* border) const {
+        Accumulate(img, covered, camera_.width, k_, weight, pixels, acc);
+        if (border) AccumulateBorder(img, covered, camera_.width, k_, weight, borderPixels, border);
+    }
+
     std::shared_ptr<const raster::PreparedTexture> Prepared(const raster::Texture* map) {
         auto it = prepared_->find(map);
         if (it == prepared_->end())
@@ -337,7 +359,7 @@ GroupGeometry Renderer::Impl::Geometry(const GroupDraw& d, bool pemSplit) {
         d.stats->trianglesOut += gg.mirror.mesh.triangles.size();
     } else {
         LensPathsOptions lo;
-        lo.tess.maxEdgeSubpixels = d.s.t;
+        lo.tess.maxEdgeSubpixels = d.s.t > 0.0 ? d.s.t : maps.tessT;
         lo.supersampling = d.s.subpixels > 0 ? d.s.subpixels : maps.spp;
         lo.adaptive = d.s.method != Method::Pem;
         lo.threads = d.s.threads;
@@ -638,7 +660,12 @@ RenderedFrame Renderer::Render(const raster::Camera& camera, const RenderSetting
         m.DrawGroup({camera, s, g, out.stats.samples, out.stats.sampleWeights, pixels, &acc, sub,
                      &border, border.empty() ? nullptr : &borderSamples[static_cast<size_t>(g)],
                      &out.stats});
-        const double saturation = m.RadianceScale(s);  // the terms added in one framebuffer
+        // The terms added in one framebuffer: an 8-bit one saturates at the scale, a float one
+        // (float maps) does not.
+        const bool floatMaps =
+            s.method != Method::StaticEm && m.maps.hardware.format == raster::TexelFormat::Rgba32F;
+        const double saturation =
+            floatMaps ? std::numeric_limits<double>::infinity() : m.RadianceScale(s);
         for (size_t k = 0; k < pixels.size(); ++k) {
             out.lensMask[pixels[k]] = 1;
             for (size_t c = 0; c < 3; ++c)

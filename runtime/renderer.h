@@ -45,7 +45,7 @@ const char* ToString(Method m);
 
 struct RenderSettings {
     Method method = Method::Hybrid;
-    double t = 5.0;     // hybrid tessellation threshold (subpixels)
+    double t = 0.0;     // hybrid tessellation threshold (subpixels); 0: the maps' (MapSet::tessT)
     int subpixels = 0;  // k: subpixels per pixel side of the lens frames, and t's unit
                         // (1/k pixel); 0: the PEMs' supersampling (the traced images' K×K,
                         // the hybrid paper's 3×3), as inferred; the viewer, which draws one

@@ -80,7 +80,7 @@ def check_system(sysdir):
     ref = float(meta["objective"])
     if abs(own - ref) > 1e-9 * max(1.0, ref):
         fail(f"{base}: objective of the exported x {own} differs from pemref's {ref}")
-    lo, hi = (0.0, 1.0) if meta["bounds"] == "unit" else (0.0, np.inf)
+    lo, hi = {"unit": (0.0, 1.0), "hdr": (0.0, np.inf), "none": (-np.inf, np.inf)}[meta["bounds"]]
     on_bound = int(np.sum((x <= lo) | (x >= hi)))
     if on_bound == 0:
         sol = scipy.sparse.linalg.lsmr(k, h, atol=1e-10, btol=1e-10, maxiter=20000)[0]

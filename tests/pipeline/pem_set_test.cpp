@@ -8,10 +8,13 @@
 
 #include <algorithm>
 #include <cstring>
+#include <fstream>
+#include <iterator>
 
 #include "base/input_error.h"
 #include "infer/pem_file.h"
 #include "pipeline/layout.h"
+#include "pipeline/pem_pack.h"
 #include "tests/pipeline/pem_dir_fixture.h"
 
 namespace pem::pipeline {
@@ -37,6 +40,44 @@ TEST(PemSet, MapsAreTheEightBitCopiesOfTheFiles) {
     EXPECT_EQ(set.res, 8);
     ASSERT_EQ(set.samples.size(), 1u);
     EXPECT_EQ(set.samples[0].width, 32);
+    fs::remove_all(dir);
+}
+
+// A PEM of float maps (manifest "map_format": "rgba32f", infer --map-format): the manifest keeps
+// the format, the maps load as RGBA32F textures holding the file's floats as they are (negative
+// and above 1 too, where the 8-bit copy clamps them), and packing it (8-bit maps) is refused.
+TEST(PemSet, FloatMapsKeepTheirValues) {
+    const fs::path dir = FreshDir("pem_float");
+    PemManifest m = MakePemDir(dir);
+    m.hardware.format = raster::TexelFormat::Rgba32F;
+    WritePemManifest(m);
+    ASSERT_EQ(ReadPemManifest(m.dir).hardware.format, raster::TexelFormat::Rgba32F);
+    infer::WriteEnvMapExr(ConstantMap(8, -0.75f, 2.5f, 0.25f, 1.0f),
+                          MapPath(m.dir, 0, 0, "pem_distant"));
+    const runtime::MapSet set = LoadMapSet(ReadPemManifest(m.dir));
+    const raster::Texture* t = set.map(0, 0, "pem_distant");
+    ASSERT_NE(t, nullptr);
+    EXPECT_EQ(t->format, raster::TexelFormat::Rgba32F);
+    ASSERT_EQ(t->NumLevels(), 4);
+    for (int l = 0; l < 4; ++l) {
+        const std::vector<float> v = raster::FloatsFromBytes(t->levels[static_cast<size_t>(l)]);
+        ASSERT_EQ(v.size(), size_t{4} * 6 * size_t(8 >> l) * size_t(8 >> l));
+        for (size_t k = 0; k < v.size(); k += 4)
+            ASSERT_TRUE(v[k] == -0.75f && v[k + 1] == 2.5f && v[k + 2] == 0.25f && v[k + 3] == 1.0f)
+                << "level " << l << " texel " << k / 4;
+    }
+    EXPECT_THROW(PackPem(m.dir, (dir / "float.pempack").string(), {}), base::InputError);
+    // The inference's tessellation t travels with the maps (the renderers' default t).
+    EXPECT_EQ(set.tessT, runtime::kDefaultTessT);
+    m.tessT = 2.5;
+    WritePemManifest(m);
+    EXPECT_EQ(LoadMapSet(ReadPemManifest(m.dir)).tessT, 2.5);
+    // Written without the key (8-bit maps), as before it existed.
+    m.hardware.format = raster::TexelFormat::Rgba8;
+    WritePemManifest(m);
+    std::ifstream in(fs::path(m.dir) / kManifestJson);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    EXPECT_EQ(text.find("map_format"), std::string::npos);
     fs::remove_all(dir);
 }
 

@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "base/input_error.h"
@@ -152,6 +153,46 @@ TEST(Renderer, RadianceScaleMultipliesTheLensFrames) {
             }
         }
         EXPECT_GT(above, 100u) << ToString(m);  // the blue channel: 2 F > 1
+    }
+}
+
+// `t` as an RGBA32F texture of one colour (every level).
+raster::Texture FloatConstant(raster::Texture t, const std::array<float, 4>& rgba) {
+    t.format = raster::TexelFormat::Rgba32F;
+    for (std::vector<uint8_t>& level : t.levels) {
+        std::vector<float> v(level.size());
+        for (size_t i = 0; i < v.size(); ++i) v[i] = rgba[i % 4];
+        level = raster::FloatBytes(v);
+    }
+    return t;
+}
+
+// Float maps (MapHardware::format RGBA32F) are drawn into a float colour buffer: a map value
+// above 1 shows as it is (here 1.5 and 3 times F), where an 8-bit map would saturate, and the
+// in-range channel as F times it, without 8-bit steps.
+TEST(Renderer, FloatMapsAreDrawnUnclamped) {
+    Fixture fx;
+    const raster::Texture outer = Constant(8, 128, 64, 255, 255);
+    fx.SetLayers(FloatConstant(Constant(8, 0, 0, 0, 0), {0, 0, 0, 0}),
+                 FloatConstant(outer, {1.5f, 0.25f, 3.0f, 1.0f}));
+    MapSet maps = fx.Maps();
+    maps.hardware.format = raster::TexelFormat::Rgba32F;
+    Renderer r(fx.scene, std::move(maps), 2);
+    const float map[3] = {1.5f, 0.25f, 3.0f};
+    for (Method m : {Method::Hybrid, Method::Pem}) {
+        const RenderedFrame f = r.Render(r.SampleCamera(0), Settings(m));
+        ASSERT_GT(LensPixels(f), 100u);
+        size_t above = 0;
+        for (size_t p = 0; p < f.lensMask.size(); ++p) {
+            if (!f.lensMask[p]) continue;
+            const float* px = &f.image.data[3 * p];
+            for (int c = 0; c < 3; ++c) {  // F in [0.9, 1], float rounding only
+                ASSERT_TRUE(px[c] >= 0.9f * map[c] * (1 - 1e-5f) && px[c] <= map[c] * (1 + 1e-5f))
+                    << ToString(m) << " pixel " << p << " channel " << c << ": " << px[c];
+                above += px[c] > 1.0f;
+            }
+        }
+        EXPECT_GT(above, 200u) << ToString(m);  // red and blue above 1
     }
 }
 

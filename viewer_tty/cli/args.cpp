@@ -86,6 +86,15 @@ void AddMapHardwareOptions(CLI::App* sub, runtime::MapHardware* hardware) {
     sub->add_option("--lod-bias", hardware->lodBias,
                     "the lens maps' GL_TEXTURE_LOD_BIAS (-4..4; below 0: finer levels)")
         ->check(CLI::Range(-runtime::kMaxLodBias, runtime::kMaxLodBias));
+    sub->add_option_function<std::string>(
+           "--map-format",
+           [hardware](const std::string& v) {
+               for (const auto& [name, format] : raster::kTexelFormatNames)
+                   if (name == v) hardware->format = format;
+           },
+           "the maps' texels: rgba8 (8-bit, [0, 1]; default) or rgba32f (floats, unbounded, drawn "
+           "into an RGBA32F colour buffer)")
+        ->check(CLI::IsMember({"rgba8", "rgba32f"}));
     sub->add_option("--radiance-scale", hardware->radianceScale,
                     "the maps hold radiance / S (S: 1, 2, 4 .. 64)")
         ->check([](const std::string& v) -> std::string {

@@ -23,7 +23,7 @@ using nlohmann::json;
 
 struct RenderArgs {
     std::string pemDir, view = "sample:0", size, out, method = "hybrid", stats, profile;
-    double t = 5.0;
+    double t = 0.0;  // 0: the maps' own (the inference's t)
     int spp = 3, subpixels = 0, layers = 0, threads = 1, repeat = 0;
     float exposure = 1.0f;
     bool quiet = false;
@@ -51,7 +51,10 @@ void AddRenderCommand(CLI::App& app) {
     sub->add_option("--view", a.view, "sample:I | orbit:AZ:EL:DIST | camera");
     sub->add_option("--size", a.size, "image size WxH (default: the PEMs')");
     sub->add_option("--method", a.method, "hybrid | pem | static | traced");
-    sub->add_option("--t", a.t, "tessellation threshold (subpixels)")->check(CLI::Range(0.25, 1e4));
+    sub->add_option("--t", a.t,
+                    "tessellation threshold (subpixels; default: the t the maps were inferred "
+                    "with, manifest.json)")
+        ->check(CLI::Range(0.25, 1e4));
     sub->add_option("--subpixels", a.subpixels,
                     "K: t is in 1/K pixel (default 0: the PEMs' supersampling)")
         ->check(CLI::Range(0, 16));
@@ -118,7 +121,7 @@ json StatsJson(const RenderArgs& a, runtime::Renderer& renderer, const raster::C
         {"method", a.method},
         {"view", a.view},
         {"size", {camera.width, camera.height}},
-        {"t", a.t},
+        {"t", s.t > 0.0 ? s.t : renderer.maps().tessT},
         {"threads", a.threads},
         {"samples", st.samples},
         {"sample_weights", st.sampleWeights},

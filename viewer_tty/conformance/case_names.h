@@ -65,10 +65,7 @@ inline constexpr std::array<NameTable<raster::BlendEquation>, 5> kBlendEquationN
 }};
 
 // A texture's `internal_format` and the frame's `color_format`.
-inline constexpr std::array<NameTable<raster::TexelFormat>, 2> kTexelFormatNames = {{
-    {"rgba8", raster::TexelFormat::Rgba8},
-    {"rgba32f", raster::TexelFormat::Rgba32F},
-}};
+inline constexpr auto kTexelFormatNames = raster::kTexelFormatNames;  // one spelling everywhere
 
 inline constexpr std::array<NameTable<raster::ColorFormat>, 2> kColorFormatNames = {{
     {"rgba8", raster::ColorFormat::Rgba8},

@@ -186,13 +186,16 @@ GroupBudget SampleBudget(runtime::Renderer& renderer, const pipeline::TraceManif
                                   v[c] = layers[size_t(t)][l].rgba[4 * p + c];
                           });
     };
-    const ExactStages exact =
-        ExactLookupStages(renderer.tracer(), cam, trace.spp, g, Targets(im, g), im.b[0],
-                          GroupMapResolution(renderer.maps(), view, g),
-                          static_cast<double>(renderer.maps().hardware.radianceScale), s.threads);
+    const bool bounded = renderer.maps().hardware.format == raster::TexelFormat::Rgba8;
+    const ExactStages exact = ExactLookupStages(
+        renderer.tracer(), cam, trace.spp, g, Targets(im, g), im.b[0],
+        GroupMapResolution(renderer.maps(), view, g),
+        static_cast<double>(renderer.maps().hardware.radianceScale), bounded, s.threads);
     stage("best maps, exact lookups", composited(exact.unbounded));
-    stage("nonnegative maps", composited(exact.nonnegative));
-    stage("maps' range", composited(exact.inRange));
+    if (bounded) {  // 8-bit maps; float maps have neither bound
+        stage("nonnegative maps", composited(exact.nonnegative));
+        stage("maps' range", composited(exact.inRange));
+    }
     stage("map resolution", composited(exact.ownResolution));
     stage("texgen, filtering, solve", composited(renderer.LayerImages(cam, s, g.index, view)));
     stage("hardware frame", RgbOf(hybrid.image));

@@ -19,12 +19,15 @@
 //                       fit bought (sharpening; no radiance is negative)
 //   maps' range         the same fit in the 8-bit maps' range, [0, radiance scale]
 //                       (runtime/map_set.h): what clamping the incident radiance costs
-//   map resolution      the same fit in that range at the maps' own resolution
+//                       (float maps, runtime/map_set.h MapHardware::format: neither of these
+//                       two stages; the maps are unbounded)
+//   map resolution      the same fit in that range at the maps' own resolution (float maps:
+//                       unbounded)
 //   texgen, filtering,  the inferred maps drawn through their texgen passes alone (linear
 //   solve               profile, exact texel weights), composited and modulated as above: what
 //                       per-vertex lookups, MIP filtering and the regularized solve cost
-//   hardware frame      the hybrid frame as drawn: per-vertex F·G, 8-bit maps and framebuffer,
-//                       the hardware's compositing
+//   hardware frame      the hybrid frame as drawn: per-vertex F·G, the maps and framebuffer in
+//                       their formats (8-bit, or float), the hardware's compositing
 // Off the samples (between two samples, 10° above): the hybrid frame against the ray tracer at
 // the same K×K there (full tree, and the two-term model traced there), on the pixels that see
 // the group, compared with the same measures at the sample: the cost of being away from it.

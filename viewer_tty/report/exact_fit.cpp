@@ -177,7 +177,7 @@ ExactStages ExactLookupStages(const trace::Tracer& tracer, const raster::Camera&
                               const runtime::LensGroupEm& g,
                               const std::vector<std::vector<trace::FloatImage>>& targets,
                               const trace::FloatImage& coverage, int res, double maxRadiance,
-                              int threads) {
+                              bool bounded, int threads) {
     // Step 1: the subpixels' exit rays, traced once for every fit.
     const Subpixels sp = TraceSubpixels(tracer, cam, k, g.index, coverage, threads);
     const size_t wh = size_t(cam.width) * size_t(cam.height);
@@ -207,6 +207,13 @@ ExactStages ExactLookupStages(const trace::Tracer& tracer, const raster::Camera&
         const raster::RenderingMatrix fine = rows(2 * res);
         const infer::LinearSystem sys = BuildLayerSystem(fine, 2 * res, w, h, target, 1.0);
         Show(fine, sys, Fit(sys, infer::Bounds::None(), threads), 1.0, terms, w, h, &out.unbounded);
+        const raster::RenderingMatrix coarse = rows(res);
+        if (!bounded) {  // float maps: unbounded at their own resolution too
+            const infer::LinearSystem own = BuildLayerSystem(coarse, res, w, h, target, 1.0);
+            Show(coarse, own, Fit(own, infer::Bounds::None(), threads), 1.0, terms, w, h,
+                 &out.ownResolution);
+            continue;
+        }
         Show(fine, sys, Fit(sys, infer::Bounds::Hdr(), threads), 1.0, terms, w, h,
              &out.nonnegative);
         const infer::LinearSystem scaled =
@@ -214,7 +221,6 @@ ExactStages ExactLookupStages(const trace::Tracer& tracer, const raster::Camera&
         Show(fine, scaled, Fit(scaled, infer::Bounds::Unit(), threads), maxRadiance, terms, w, h,
              &out.inRange);
         // Step 4: in the maps' range at their own resolution.
-        const raster::RenderingMatrix coarse = rows(res);
         const infer::LinearSystem own = BuildLayerSystem(coarse, res, w, h, target, maxRadiance);
         Show(coarse, own, Fit(own, infer::Bounds::Unit(), threads), maxRadiance, terms, w, h,
              &out.ownResolution);

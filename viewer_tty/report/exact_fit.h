@@ -11,7 +11,8 @@
 // are traced once and the rows built once per resolution; the nonnegative fit starts from the
 // unbounded one clamped, the fit in range from the nonnegative one.
 //
-//   ExactStages st = ExactLookupStages(tracer, camera, k, group, targets, coverage, 128, 2.0, 2);
+//   ExactStages st = ExactLookupStages(tracer, camera, k, group, targets, coverage, 128, 2.0,
+//                                      /*bounded=*/true, 2);
 //
 // Conventions: targets[τ][l] is layer_l_τ with the lens coverage divided out (RGBA, the maps'
 // premultiplied values); each stage has Renderer::LayerImages' layout ([term][layer] RGBA per
@@ -31,6 +32,9 @@
 namespace pem::report {
 
 // The fits the budget compares, each in Renderer::LayerImages' layout.
+// `bounded` false (float maps, MapHardware::format RGBA32F): the maps have no bounds, so there
+// are no nonnegative and in-range fits (left empty) and the fit at the maps' resolution is
+// unbounded too.
 struct ExactStages {
     std::vector<std::vector<raster::ImageF>> unbounded;      // twice the maps' resolution
     std::vector<std::vector<raster::ImageF>> nonnegative;    // the same, texels >= 0
@@ -42,6 +46,6 @@ ExactStages ExactLookupStages(const trace::Tracer& tracer, const raster::Camera&
                               const runtime::LensGroupEm& group,
                               const std::vector<std::vector<trace::FloatImage>>& targets,
                               const trace::FloatImage& coverage, int res, double maxRadiance,
-                              int threads);
+                              bool bounded, int threads);
 
 }  // namespace pem::report
