@@ -96,11 +96,12 @@ struct MapInput {
     bool own = true;                        // the sample's own view (counts in rmse_8bit)
 };
 
-// Rows of b appended to a (the same columns).
+// Whether the maps are float (MapHardware::format): unbounded texels, RGBA32F frames.
 bool FloatMaps(const InferJobOptions& opt) {
     return opt.hardware.format == raster::TexelFormat::Rgba32F;
 }
 
+// Rows of b appended to a (the same columns).
 void AppendRows(raster::RenderingMatrix* a, const raster::RenderingMatrix& b) {
     const int64_t base = a->rowPtr.back();
     for (size_t r = 1; r < b.rowPtr.size(); ++r) a->rowPtr.push_back(base + b.rowPtr[r]);
