@@ -227,7 +227,13 @@ void RunReportJob(const ReportJobOptions& o) {
         data.budget = ErrorBudget(*renderer, pipeline::ReadTraceManifest(traceDir), at, o.threads);
     }
     // Step 4: packed PEMs, their size against the frames drawn from them.
-    if (o.packs) data.packs = StudyPacks(pemDir, o.dir, references, data.results, o.threads, o.log);
+    // (A pack holds 8-bit maps: a PEM of float maps is not packed, and the report says so.)
+    const bool floatMaps = renderer->maps().hardware.format != raster::TexelFormat::Rgba8;
+    if (o.packs && floatMaps)
+        data.leftOut.push_back({"all lens groups", "the packed PEMs (packs.svg)",
+                                "the maps are rgba32f; a pack holds 8-bit maps", 0.0});
+    if (o.packs && !floatMaps)
+        data.packs = StudyPacks(pemDir, o.dir, references, data.results, o.threads, o.log);
     AddNotes(o.referenceSpp, &data);
     // Step 5: the stability suite; the documents.
     if (o.stability) AddStability(o, &data);
