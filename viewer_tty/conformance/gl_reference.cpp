@@ -365,33 +365,19 @@ void SetupFramebuffer(const Frame& frame, GlObjects* objects) {
     CheckGl("framebuffer setup");
 }
 
-// An RGBA32F colour buffer's floats, rows top-down.
-raster::ImageF ReadFloatPixelsTopDown(const Frame& frame) {
-    raster::ImageF image{frame.width, frame.height, {}};
-    const size_t rowFloats = size_t(frame.width) * 4;
-    std::vector<float> bottomUp(rowFloats * size_t(frame.height));
-    glPixelStorei(GL_PACK_ALIGNMENT, 4);
-    glReadPixels(0, 0, frame.width, frame.height, GL_RGBA, GL_FLOAT, bottomUp.data());
-    CheckGl("glReadPixels(GL_FLOAT)");
-    image.rgba.resize(bottomUp.size());
-    for (size_t y = 0; y < size_t(frame.height); ++y)
-        std::copy_n(bottomUp.data() + (size_t(frame.height) - 1 - y) * rowFloats, rowFloats,
-                    image.rgba.data() + y * rowFloats);
-    return image;
-}
-
-raster::Image8 ReadPixelsTopDown(const Frame& frame) {
-    raster::Image8 image{frame.width, frame.height, {}};
-    const size_t rowBytes = size_t(frame.width) * 4;
-    std::vector<uint8_t> bottomUp(rowBytes * size_t(frame.height));
+// The colour buffer's RGBA values of type T (GL_UNSIGNED_BYTE: uint8_t; GL_FLOAT: float),
+// rows top-down.
+template <class T>
+std::vector<T> ReadColourTopDown(const Frame& frame, GLenum type) {
+    const size_t row = size_t(frame.width) * 4;
+    std::vector<T> bottomUp(row * size_t(frame.height)), topDown(bottomUp.size());
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    glReadPixels(0, 0, frame.width, frame.height, GL_RGBA, GL_UNSIGNED_BYTE, bottomUp.data());
+    glReadPixels(0, 0, frame.width, frame.height, GL_RGBA, type, bottomUp.data());
     CheckGl("glReadPixels");
-    image.rgba.resize(bottomUp.size());
     for (size_t y = 0; y < size_t(frame.height); ++y)
-        std::copy_n(bottomUp.data() + (size_t(frame.height) - 1 - y) * rowBytes, rowBytes,
-                    image.rgba.data() + y * rowBytes);
-    return image;
+        std::copy_n(bottomUp.data() + (size_t(frame.height) - 1 - y) * row, row,
+                    topDown.data() + y * row);
+    return topDown;
 }
 
 // The depth buffer, rows top-down, as raster/depth.h stores it: unorm formats read as
@@ -468,9 +454,10 @@ raster::Image8 RenderWithGl(const Frame& frame, int repeat, std::vector<double>*
     if (depth) *depth = frame.depth ? ReadDepthTopDown(frame) : std::vector<uint32_t>{};
     if (floatPixels)
         *floatPixels = frame.colorFormat == raster::ColorFormat::Rgba32F
-                           ? ReadFloatPixelsTopDown(frame)
+                           ? raster::ImageF{frame.width, frame.height,
+                                            ReadColourTopDown<float>(frame, GL_FLOAT)}
                            : raster::ImageF{};
-    return ReadPixelsTopDown(frame);
+    return {frame.width, frame.height, ReadColourTopDown<uint8_t>(frame, GL_UNSIGNED_BYTE)};
 }
 
 }  // namespace pem::conformance
