@@ -2,9 +2,9 @@
 // frame.h — the value types that describe one frame for raster/: textures (cube maps and 2D
 // textures, RGBA8 or RGBA32F, every MIP level given explicitly), sampler state, passes of
 // clip-space triangles, blend state, an RGBA8 or RGBA32F colour buffer, an optional depth buffer
-// and per-pass depth tests. A Frame is what a
-// raster case file (viewer_tty/conformance/case_file.h) holds and what both pemref's rasterizer
-// and the OpenGL reference harness (pemref-gl) render.
+// and per-pass depth tests. A Frame is what a raster case file
+// (viewer_tty/conformance/case_file.h) holds and what both pemref's rasterizer and the OpenGL
+// reference harness (pemref-gl) render.
 //
 // Conventions (shared by every module):
 //  - Cube faces in GL order: 0 +X, 1 -X, 2 +Y, 3 -Y, 4 +Z, 5 -Z (GL 4.6 table 8.19).

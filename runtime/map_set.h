@@ -9,9 +9,8 @@
 // Map names: layer_<l> (hybrid layers, l = 0 innermost, both terms), single (the single-layer
 // PEM) and pem_local / pem_distant (mirror-only groups, PEM mode). `map` returns nullptr for a
 // map that does not exist; the texture is the hardware's copy (MapHardware::format) with its
-// sampler. A map of
-// a two-image layout (paraboloid, tennis) is two textures: `map` returns the first of two
-// consecutive ones (chart 0, chart 1; LayoutOf(parameterization, res).textures).
+// sampler. A map of a two-image layout (paraboloid, tennis) is two textures: `map` returns the
+// first of two consecutive ones (chart 0, chart 1; LayoutOf(parameterization, res).textures).
 // Not here: reading files (pipeline/), drawing (renderer.h).
 #pragma once
 
