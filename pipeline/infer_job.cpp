@@ -17,6 +17,7 @@
 #include "base/matrix_market.h"
 #include "infer/env_map.h"
 #include "infer/pem_file.h"
+#include "pipeline/display_target.h"
 #include "pipeline/layout.h"
 #include "pipeline/map_files.h"
 #include "pipeline/pem_manifest.h"
@@ -90,6 +91,8 @@ void ExportSystem(const std::string& exportDir, const MapReport& rep,
 struct MapInput {
     const trace::FloatImage* layer = nullptr;     // RGBA premultiplied layer image
     const trace::FloatImage* coverage = nullptr;  // alpha = lens coverage
+    const trace::FloatImage* frame = nullptr;     // the traced two-term frame (pixels)
+    const trace::FloatImage* fresnel = nullptr;   // F·G of the rows' term (pixels, alpha = share)
     std::vector<raster::Pass> passes;             // the layer's, one per texture of the map
     std::optional<raster::Pass> depthPass;  // drawn before `passes`: depth only (DepthOnlyPass)
     double weight = 1.0;                    // the rows' weight (times the coverage)
@@ -148,22 +151,26 @@ std::vector<uint32_t> CoveredCells(const MapInput& in) {
 }
 
 // Target rows of the listed subpixels, 4 each: the layer un-premultiplied by coverage, RGB in
-// the maps' units (radiance / scale), clamped into [0, 1] (what 8-bit maps can reach; for float
-// maps what the display shows, so that the light sources' radiance of thousands does not
-// outweigh the rest of the fit) unless `unclamped` (HDR); weight · coverage.
-void AppendTarget(const MapInput& in, const std::vector<uint32_t>& cells, double scale,
-                  bool unclamped, infer::Target* t) {
+// the maps' units (radiance / scale); `hdr`: as traced; float maps (`floats`): nonnegative, what
+// the display shows (display_target.h); 8-bit maps: clamped into [0, 1], what they can reach.
+// Weight · coverage.
+void AppendTarget(const MapInput& in, const std::vector<uint32_t>& cells, int k, double scale,
+                  bool hdr, bool floats, infer::Target* t) {
     const int width = in.coverage->width;
-    for (uint32_t cell : cells) {
-        const int x = static_cast<int>(cell) % width, y = static_cast<int>(cell) / width;
+    std::vector<double> b(4 * cells.size());
+    for (size_t i = 0; i < cells.size(); ++i) {
+        const int x = static_cast<int>(cells[i]) % width, y = static_cast<int>(cells[i]) / width;
         const double cov = static_cast<double>(in.coverage->At(x, y)[3]);
         for (size_t c = 0; c < 4; ++c) {
             const double v =
                 static_cast<double>(in.layer->At(x, y)[c]) / cov / (c < 3 ? scale : 1.0);
-            t->b.push_back(unclamped ? v : std::clamp(v, 0.0, 1.0));
-            t->confidence.push_back(in.weight * cov);
+            b[4 * i + c] = hdr ? v : std::max(v, 0.0);
+            if (!hdr && (c == 3 || !floats)) b[4 * i + c] = std::min(b[4 * i + c], 1.0);
         }
+        for (size_t c = 0; c < 4; ++c) t->confidence.push_back(in.weight * cov);
     }
+    if (floats && !hdr) ClipToDisplay({in.coverage, in.frame, in.fresnel}, cells, k, scale, &b);
+    t->b.insert(t->b.end(), b.begin(), b.end());
 }
 
 // One of the sample's own observations: its K× frame, its first stacked row, its subpixels.
@@ -194,8 +201,8 @@ StackedRows StackRows(const std::vector<MapInput>& inputs, int w, int h, int k, 
         std::vector<uint32_t> cells = CoveredCells(inputs[i]);
         raster::RenderingMatrix a =
             raster::BuildRenderingMatrix(raster::PreparedFrame(f), ro, &cells);
-        AppendTarget(inputs[i], cells, static_cast<double>(opt.hardware.radianceScale), opt.hdr,
-                     &s.target);
+        AppendTarget(inputs[i], cells, k, static_cast<double>(opt.hardware.radianceScale), opt.hdr,
+                     FloatMaps(opt), &s.target);
         if (i == 0) {
             s.a = std::move(a);
             s.frame = f;
@@ -383,6 +390,8 @@ struct ViewGeometry {
     glm::mat4 vp{1.0f};
     double weight = 1.0;
     trace::FloatImage cov[2];  // per term: b_τ's samples (alpha = coverage)
+    trace::FloatImage frame;   // the traced two-term frame (what the display shows)
+    trace::FloatImage fg[2];   // per term: F·G (pixels)
     std::vector<runtime::ExitRay> exits[2];
 };
 
@@ -419,9 +428,11 @@ ViewGeometry SampleGeometry(const Context& c, int u, const runtime::LensGroupEm&
     vg.weight = weight;
     sample->pathSeconds += Since(t0);
     sample->vertexRays += vg.lp.counts.Total();
+    vg.frame = ReadFrameImage(c.tm, u, "greedy");
     for (int term = 0; term < terms; ++term) {
         const std::string tn = runtime::TermName(term);
         vg.cov[term] = ReadGroupSamples(c.tm, u, group, "b_" + tn);
+        vg.fg[term] = ReadGroupImage(c.tm, u, group, "FG_" + tn);
         vg.exits[term] = runtime::TermExits(vg.lp.tess.paths, term);
     }
     return vg;
@@ -462,6 +473,8 @@ std::vector<MapInput> Observations(const InferJobOptions& opt, const std::vector
             const ViewGeometry& vg = geo[k];
             MapInput in{images[static_cast<size_t>(term)][k],
                         &vg.cov[term],
+                        &vg.frame,
+                        &vg.fg[term],
                         {},
                         {},
                         vg.weight,
@@ -526,6 +539,8 @@ void SolvePemMaps(Context& c, int v, const runtime::LensGroupEm& g, const std::s
         runtime::MakeMirrorGeometry(c.scene, g.index, c.cameras[static_cast<size_t>(v)]);
     const trace::FloatImage distant = ReadGroupSamples(c.tm, v, g.index, "distant");
     const trace::FloatImage local = ReadGroupSamples(c.tm, v, g.index, "local");
+    const trace::FloatImage frame = ReadFrameImage(c.tm, v, "greedy");
+    const trace::FloatImage fresnel = ReadGroupImage(c.tm, v, g.index, "fresnel1");
     const std::vector<uint8_t> hull = runtime::HullTriangles(m.mesh);
     const bool convex = runtime::AllOnHull(hull);
     if (convex) {
@@ -540,7 +555,7 @@ void SolvePemMaps(Context& c, int v, const runtime::LensGroupEm& g, const std::s
     const std::vector<uint32_t> offHull = runtime::OffHull(m.order, hull);
     for (int which = convex ? 1 : 0; which < 2; ++which) {
         const trace::Shell& shell = which == 0 ? g.localShell : g.distantShell;
-        MapInput in{which == 0 ? &local : &distant, &distant, {}, {}, 1.0, true};
+        MapInput in{which == 0 ? &local : &distant, &distant, &frame, &fresnel, {}, {}, 1.0, true};
         runtime::PassOptions po = DepthTested(c.opt, c.cameras[static_cast<size_t>(v)]);
         if (which == 0) {
             in.depthPass = runtime::DepthOnlyPass(m.Pass(), m.order, m.viewProjection);

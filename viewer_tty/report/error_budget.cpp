@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "base/display_image.h"
+#include "pipeline/display_target.h"
 #include "pipeline/layout.h"
 #include "runtime/parameterization.h"
 #include "trace/image.h"
@@ -102,10 +103,16 @@ Rgb Recomposed(const Rgb& greedy, const GroupImages& im, int terms, size_t layer
     return out;
 }
 
-// The maps' targets: each non-empty layer's image with the lens coverage divided out.
+// The maps' targets: each non-empty layer's image with the lens coverage divided out; for float
+// maps (`shown`: the traced frame) what the display shows of it, as inference fits them
+// (pipeline/display_target.h; pixels here, subpixels there).
 std::vector<std::vector<trace::FloatImage>> Targets(const GroupImages& im,
-                                                    const runtime::LensGroupEm& g) {
+                                                    const runtime::LensGroupEm& g,
+                                                    const trace::FloatImage* shown, double scale) {
     std::vector<std::vector<trace::FloatImage>> out(size_t(g.Terms()));
+    std::vector<uint32_t> cells;  // the covered pixels
+    for (size_t p = 0; p < im.b[0].data.size() / 4; ++p)
+        if (im.b[0].data[4 * p + 3] > 1e-6f) cells.push_back(static_cast<uint32_t>(p));
     for (int t = 0; t < g.Terms(); ++t)
         for (size_t l = 0; l < g.layers.size(); ++l) {
             if (g.layers[l].Empty()) continue;
@@ -114,6 +121,17 @@ std::vector<std::vector<trace::FloatImage>> Targets(const GroupImages& im,
                 const float cov = im.b[0].data[4 * p + 3];
                 for (size_t c = 0; c < 4; ++c)
                     img.data[4 * p + c] = cov > 1e-6f ? img.data[4 * p + c] / cov : 0.0f;
+            }
+            if (shown) {  // float maps: fitted to what the display shows, in map units
+                std::vector<double> b;
+                for (uint32_t p : cells)
+                    for (size_t c = 0; c < 4; ++c)
+                        b.push_back(
+                            std::max(0.0, double(img.data[4 * p + c]) / (c < 3 ? scale : 1.0)));
+                pipeline::ClipToDisplay({&im.b[0], shown, &im.fg[t]}, cells, 1, scale, &b);
+                for (size_t i = 0; i < cells.size(); ++i)
+                    for (size_t c = 0; c < 3; ++c)
+                        img.data[4 * cells[i] + c] = static_cast<float>(b[4 * i + c] * scale);
             }
             out[size_t(t)].push_back(std::move(img));
         }
@@ -187,10 +205,11 @@ GroupBudget SampleBudget(runtime::Renderer& renderer, const pipeline::TraceManif
                           });
     };
     const bool bounded = renderer.maps().hardware.format == raster::TexelFormat::Rgba8;
+    const double scale = static_cast<double>(renderer.maps().hardware.radianceScale);
+    const trace::FloatImage shown = pipeline::ReadFrameImage(trace, view, "greedy");
     const ExactStages exact = ExactLookupStages(
-        renderer.tracer(), cam, trace.spp, g, Targets(im, g), im.b[0],
-        GroupMapResolution(renderer.maps(), view, g),
-        static_cast<double>(renderer.maps().hardware.radianceScale), bounded, s.threads);
+        renderer.tracer(), cam, trace.spp, g, Targets(im, g, bounded ? nullptr : &shown, scale),
+        im.b[0], GroupMapResolution(renderer.maps(), view, g), scale, bounded, s.threads);
     stage("best maps, exact lookups", composited(exact.unbounded));
     if (bounded) {  // 8-bit maps; float maps have neither bound
         stage("nonnegative maps", composited(exact.nonnegative));
