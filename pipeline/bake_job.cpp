@@ -15,6 +15,8 @@
 #include "base/worker_pool.h"
 #include "pipeline/layout.h"
 #include "pipeline/pem_manifest.h"
+#include "raster/frame.h"
+#include "runtime/lens_paths.h"
 #include "runtime/parameterization.h"
 
 namespace pem::pipeline {
@@ -32,7 +34,7 @@ json BakeSettings(const BakeJobOptions& o) {
     std::error_code ec;
     const fs::path scene = fs::weakly_canonical(o.trace.scene, ec);
     const runtime::MapHardware& hw = o.infer.hardware;
-    return {
+    json s = {
         {"scene", ec ? o.trace.scene : scene.string()},
         {"views", o.trace.views},
         {"size", std::to_string(o.trace.width) + "x" + std::to_string(o.trace.height)},
@@ -46,6 +48,13 @@ json BakeSettings(const BakeJobOptions& o) {
         {"anisotropy", hw.maxAnisotropy},
         {"lod-bias", hw.lodBias},
         {"radiance-scale", hw.radianceScale}};
+    // Settings added later, recorded only when not their default (older bake.json files stay
+    // valid): the maps' format and the tessellation t.
+    if (hw.format != raster::TexelFormat::Rgba8)
+        for (const auto& [name, format] : raster::kTexelFormatNames)
+            if (format == hw.format) s["map-format"] = std::string(name);
+    if (o.infer.tessT != runtime::kDefaultTessT) s["t"] = o.infer.tessT;
+    return s;
 }
 
 // Step 0: a new bake records its settings; a resumed one must have been started with the same
@@ -65,6 +74,10 @@ void CheckSettings(const BakeJobOptions& o) {
         } catch (const std::exception& e) {
             throw base::InputError(path, std::string("unreadable: ") + e.what());
         }
+        for (const auto& [key, value] : was.items())  // a setting given then, not now
+            if (!now.contains(key))
+                throw base::InputError(path, "this bake was started with --" + key + " " +
+                                                 value.dump() + ", resumed without it");
         for (const auto& [key, value] : now.items())
             if (!was.contains(key) || was.at(key) != value)
                 throw base::InputError(
@@ -156,6 +169,15 @@ BakeJobOptions DefaultBakeOptions() {
     BakeJobOptions o;
     o.trace.views = "circle:3:10";
     o.infer.single = true;  // the report compares the single-layer PEM
+    return o;
+}
+
+BakeJobOptions DemoBakeOptions() {
+    BakeJobOptions o = DefaultBakeOptions();
+    o.infer.res = 256;
+    o.infer.maxRes = 512;
+    o.infer.tessT = 1.0;
+    o.infer.hardware.format = raster::TexelFormat::Rgba32F;
     return o;
 }
 

@@ -46,6 +46,11 @@ struct BakeJobResult {
 // memory and gave 0.1 dB 10° above the circle, on the circle 0.1 dB less), the single-layer
 // maps too (the report compares them).
 BakeJobOptions DefaultBakeOptions();
+// The demo's bake (`pemref demo`): the defaults with maps as close to the traced frame as the
+// hardware draws them — float maps (highlights above white, negative texels; RGBA32F), each
+// map's face size from its test rendering between 256 and 512 (PEM §4), tessellation t = 1
+// subpixel (hybrid §5) — about five times the inference time of the defaults.
+BakeJobOptions DemoBakeOptions();
 
 BakeJobResult RunBakeJob(const BakeJobOptions& options);
 

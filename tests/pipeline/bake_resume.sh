@@ -54,7 +54,8 @@ if find "$work/resumed" -name '*.tmp*' | grep -q .; then echo "FAIL: temporaries
 [ "$interrupted" -eq 3 ] || { echo "FAIL: only $interrupted kill(s) interrupted the bake"; exit 1; }
 
 # Step 4: resumed with other options: refused, nothing changed.
-for other in "--res 64" "--parameterization tennis" "--size 64x48" "--views circle:2:10"; do
+for other in "--res 64" "--parameterization tennis" "--size 64x48" "--views circle:2:10" \
+    "--map-format rgba32f" "--t 2"; do
   opts=()  # args with `other` in place of its option
   for o in "--views circle:3:10" "--size 128x96" "--spp 1" "--res 32" "--quiet" "$other"; do
     # shellcheck disable=SC2206  # an option and its value

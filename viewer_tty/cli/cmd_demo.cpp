@@ -21,7 +21,9 @@ namespace {
 
 struct DemoArgs {
     std::string out = "out/demo", scene, size = "640x480";
-    int res = pipeline::kDefaultMapResolution, maxRes = 0, threads = 2;
+    int res = pipeline::DemoBakeOptions().infer.res,
+        maxRes = pipeline::DemoBakeOptions().infer.maxRes;
+    int threads = 2;
     bool quiet = false;
 };
 
@@ -46,7 +48,7 @@ void AddDemoCommand(CLI::App& app) {
 int RunDemoCommand() {
     const DemoArgs& a = Args();
     const auto t0 = std::chrono::steady_clock::now();
-    pipeline::BakeJobOptions bake = pipeline::DefaultBakeOptions();
+    pipeline::BakeJobOptions bake = pipeline::DemoBakeOptions();
     bake.trace.scene = a.scene.empty()
                            ? std::string(PEM_SOURCE_DIR) + "/data/scenes/hybrid_glass_teapot.gltf"
                            : a.scene;
