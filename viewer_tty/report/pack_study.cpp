@@ -41,7 +41,7 @@ struct Drawn {
     runtime::Method m;
     int layers;
 };
-const Drawn kDrawn[] = {{"hybrid", "t=5", runtime::Method::Hybrid, 0},
+const Drawn kDrawn[] = {{"hybrid", "", runtime::Method::Hybrid, 0},  // at the maps' t
                         {"layered PEM", "", runtime::Method::Pem, 0},
                         {"single-layer PEM", "", runtime::Method::Pem, 1}};
 
@@ -85,7 +85,8 @@ std::vector<PackRow> StudyPacks(const std::string& pemDir, const std::string& sc
         // Step 2: the frames drawn from the pack against the references.
         std::unique_ptr<runtime::Renderer> renderer = pipeline::OpenPemDirectory(pack, threads);
         for (const PackReference& ref : references)
-            for (const Drawn& d : kDrawn) {
+            for (Drawn d : kDrawn) {
+                if (d.m == runtime::Method::Hybrid) d.setting = TessSetting(renderer->maps().tessT);
                 runtime::RenderSettings rs;
                 rs.method = d.m, rs.layers = d.layers, rs.threads = threads;
                 const runtime::RenderedFrame f = renderer->Render(ref.camera, rs);

@@ -4,6 +4,7 @@
 
 #include <sys/utsname.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -48,7 +49,10 @@ struct MethodRun {
     runtime::RenderSettings settings;
 };
 
-std::vector<MethodRun> Methods(int threads) {
+// Every method the report compares; hybrid at the t its maps were inferred on (mapsT, what they
+// fit) and at the renderers' default t (kDefaultTessT, faster when coarser), or at t = 3 and 5
+// when the maps' t is the default.
+std::vector<MethodRun> Methods(double mapsT, int threads) {
     std::vector<MethodRun> runs;
     auto add = [&](std::string method, std::string setting, std::string file, runtime::Method m,
                    double t, int spp, int layers) {
@@ -59,8 +63,12 @@ std::vector<MethodRun> Methods(int threads) {
     add("static EM", "", "static", runtime::Method::StaticEm, 5.0, 1, 0);
     add("single-layer PEM", "", "pem1", runtime::Method::Pem, 5.0, 1, 1);
     add("layered PEM", "", "pem", runtime::Method::Pem, 5.0, 1, 0);
-    add("hybrid", "t=3", "hybrid_t3", runtime::Method::Hybrid, 3.0, 1, 0);
-    add("hybrid", "t=5", "hybrid_t5", runtime::Method::Hybrid, 5.0, 1, 0);
+    const double def = runtime::kDefaultTessT;
+    for (double t : {mapsT == def ? 3.0 : mapsT, def}) {
+        std::string label = TessSetting(t), file = "hybrid_" + label;
+        file.erase(std::remove(file.begin(), file.end(), '='), file.end());
+        add("hybrid", label, file, runtime::Method::Hybrid, t, 1, 0);
+    }
     for (int k = 1; k <= 4; ++k)
         add("ray tracer", std::to_string(k * k) + " spp", "traced_" + std::to_string(k * k),
             runtime::Method::RayTraced, 5.0, k, 0);
@@ -146,7 +154,7 @@ void PipelineLeftOut(const pipeline::TraceManifest& tm, const pipeline::InferRec
     }
 }
 
-// What the run-time renderer leaves out, from a hybrid t = 5 frame on the circle.
+// What the run-time renderer leaves out, from a hybrid frame on the circle (the maps' t).
 void RunTimeLeftOut(runtime::Renderer& renderer, const raster::Camera& camera, int threads,
                     ReportData* data) {
     runtime::RenderSettings hs;
@@ -157,8 +165,8 @@ void RunTimeLeftOut(runtime::Renderer& renderer, const raster::Camera& camera, i
         st.tracedVertices > 0 ? st.traceSeconds / static_cast<double>(st.tracedVertices) : 0.0;
     data->leftOut.push_back({"all lens groups",
                              std::to_string(st.backFacingTriangles) + " back-facing triangles, " +
-                                 std::to_string(st.untracedVertices) +
-                                 " vertices (hybrid t=5, on circle)",
+                                 std::to_string(st.untracedVertices) + " vertices (hybrid " +
+                                 TessSetting(renderer.maps().tessT) + ", on circle)",
                              "facing away from the eye: no vertex rays, no refinement, not drawn",
                              perVertex * static_cast<double>(st.untracedVertices)});
     if (st.groupsSkipped > 0)
@@ -210,8 +218,8 @@ void RunReportJob(const ReportJobOptions& o) {
     std::filesystem::create_directories(viewsDir);
     std::vector<PackReference> references;
     for (const Position& pos : positions)
-        references.push_back(
-            MeasurePosition(*renderer, pos, Methods(o.threads), o, viewsDir, &data));
+        references.push_back(MeasurePosition(
+            *renderer, pos, Methods(renderer->maps().tessT, o.threads), o, viewsDir, &data));
     // Step 2: what the pipeline and the run time left out.
     const std::string traceDir = pipeline::BakeTraceDir(o.dir);
     if (std::filesystem::exists(traceDir + "/" + pipeline::kTraceJson) &&

@@ -22,6 +22,12 @@
 
 namespace pem::report {
 
+std::string TessSetting(double t) {
+    char s[32];
+    std::snprintf(s, sizeof s, "t=%g", t);
+    return s;
+}
+
 namespace {
 
 // ---- Text helpers ------------------------------------------------------------------------------

@@ -35,6 +35,9 @@ struct MethodResult {
     ImageScores floatScores, scores8;  // against the reference: float values, 8-bit framebuffer
 };
 
+// The setting of a hybrid row drawn with tessellation t ("t=1", "t=2.5").
+std::string TessSetting(double t);
+
 // A piece of work the pipeline decided to skip, and what that saved.
 struct LeftOutRow {
     std::string group, decision, reason;
