@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
 
@@ -27,6 +28,7 @@
 #include "runtime/convex_hull.h"
 #include "runtime/lens_paths.h"
 #include "runtime/mirror_geometry.h"
+#include "runtime/static_em.h"
 #include "runtime/texgen.h"
 #include "trace/embree_scene.h"
 #include "trace/image.h"
@@ -316,8 +318,46 @@ double Objective(const infer::LinearSystem& sys, const Vector& x, int threads) {
     return obj;
 }
 
+// The texels no sample observes (cube maps): the environment seen from the EM origin (the
+// direct image's MIP chain, hybrid §4.3) instead of the smooth fill, so that what a viewpoint off
+// the samples discloses is there. A level of face size m reads the direct level of that size
+// (m ≤ its size n) or the level-0 texel holding its texel's centre (m > n); RGB in map units,
+// within [0, 1] for 8-bit maps, for float maps within what the solve itself reached.
+void FillFromDirect(const infer::LinearSystem& sys, const std::vector<std::vector<float>>& direct,
+                    double scale, bool floats, Vector* full) {
+    const infer::TexelLayout& lay = sys.layout;
+    if (sys.active.empty() || lay.kind != raster::TextureKind::Cube) return;
+    std::vector<char> observed(full->size() / 4, 0);
+    double hi = floats ? 0.0 : 1.0;
+    for (uint32_t t : sys.active) {
+        observed[t] = 1;
+        if (floats)
+            for (size_t c = 0; c < 3; ++c) hi = std::max(hi, (*full)[4 * size_t(t) + c]);
+    }
+    const int n = static_cast<int>(std::lround(std::sqrt(double(direct[0].size()) / 24.0)));
+    for (int level = 0; level < lay.levels; ++level) {
+        const int m = lay.LevelSize(level);
+        int k = 0;  // the direct level of size max(m, ...) read
+        while ((n >> k) > m && k + 1 < static_cast<int>(direct.size())) ++k;
+        const int dn = std::max(1, n >> k);
+        for (int f = 0; f < 6; ++f)
+            for (int j = 0; j < m; ++j)
+                for (int i = 0; i < m; ++i) {
+                    const uint32_t t = lay.LevelBase(level) + uint32_t((f * m + j) * m + i);
+                    if (observed[t]) continue;
+                    const int di = int(int64_t(i) * dn / m), dj = int(int64_t(j) * dn / m);
+                    const float* d =
+                        &direct[size_t(k)][((size_t(f) * dn + size_t(dj)) * dn + size_t(di)) * 4];
+                    for (size_t c = 0; c < 4; ++c)
+                        (*full)[4 * size_t(t) + c] =
+                            std::clamp(double(d[c]) / (c < 3 ? scale : 1.0), 0.0, c < 3 ? hi : 1.0);
+                }
+    }
+}
+
 MapReport SolveMap(const std::vector<MapInput>& inputs, const InferJobOptions& opt,
-                   const TraceManifest& tm, const std::string& dir, MapReport rep) {
+                   const TraceManifest& tm, const std::string& dir, MapReport rep,
+                   const std::vector<std::vector<float>>* direct) {
     // Step 1: the rendering matrices of the texgen passes and the stacked system.
     const auto t0 = Clock::now();
     rep.res = opt.res;
@@ -348,7 +388,10 @@ MapReport SolveMap(const std::vector<MapInput>& inputs, const InferJobOptions& o
     rep.objective = Objective(sys, res.x, opt.threads);
     // Step 3: the texels no pixel samples, and the range.
     const auto tFill = Clock::now();
-    const Vector full = infer::FillUnobserved(sys, res.x, &rep.filledTexels);
+    Vector full = infer::FillUnobserved(sys, res.x, &rep.filledTexels);
+    if (direct)
+        FillFromDirect(sys, *direct, static_cast<double>(opt.hardware.radianceScale),
+                       FloatMaps(opt), &full);
     const infer::EnvMapF map = infer::EnvMapFromSolution(full, sys.layout);
     rep.texelMin = rep.texelMax = full.empty() ? 0.0 : full[0];
     for (double v : full)
@@ -395,6 +438,9 @@ struct ViewGeometry {
     std::vector<runtime::ExitRay> exits[2];
 };
 
+// The face size of the direct images that fill the texels no sample observes.
+inline constexpr int kDirectImageSize = 128;
+
 struct Context {
     const InferJobOptions& opt;
     const TraceManifest& tm;
@@ -404,6 +450,19 @@ struct Context {
     std::vector<raster::Camera> cameras;  // per sample, as traced
     InferJobResult* result;
     int mapsDone = 0, mapsTotal = 0;
+    std::map<int, runtime::DirectImages> direct;  // per group, traced when first needed
+
+    // The group's direct images (cube maps only; nullptr otherwise).
+    const runtime::DirectImages* Direct(const runtime::LensGroupEm& g) {
+        if (opt.parameterization != runtime::Parameterization::Cube) return nullptr;
+        auto it = direct.find(g.index);
+        if (it == direct.end())
+            it = direct
+                     .emplace(g.index,
+                              runtime::TraceDirectImages(tracer, g, kDirectImageSize, opt.threads))
+                     .first;
+        return &it->second;
+    }
 
     void Progress(const std::string& name) const {
         if (opt.progress) opt.progress(name, static_cast<double>(mapsDone) / mapsTotal);
@@ -488,9 +547,9 @@ std::vector<MapInput> Observations(const InferJobOptions& opt, const std::vector
 }
 
 void Solve(Context& c, const std::vector<MapInput>& inputs, const std::string& dir,
-           const MapReport& rep) {
+           const MapReport& rep, const std::vector<std::vector<float>>* direct = nullptr) {
     c.Progress(rep.name);
-    c.result->maps.push_back(SolveMap(inputs, c.opt, c.tm, dir, rep));
+    c.result->maps.push_back(SolveMap(inputs, c.opt, c.tm, dir, rep, direct));
     ++c.mapsDone;
 }
 
@@ -520,16 +579,19 @@ void SolveLayerMaps(Context& c, int v, const runtime::LensGroupEm& g,
             for (const ViewGeometry& vg : geo)
                 images[static_cast<size_t>(t)].push_back(&owned.emplace_back(ReadGroupSamples(
                     c.tm, vg.view, g.index, LayerImageName(static_cast<int>(l), t))));
+        const runtime::DirectImages* direct = c.Direct(g);
         Solve(c, Observations(c.opt, geo, g.Terms(), v, images, g.layers[l].shell, g.emOrigin),
-              odir, Report(v, g, static_cast<int>(l), term, LayerMapName(static_cast<int>(l))));
+              odir, Report(v, g, static_cast<int>(l), term, LayerMapName(static_cast<int>(l))),
+              direct ? &direct->levels[l] : nullptr);
     }
     if (!c.opt.single) return;
     std::vector<std::vector<const trace::FloatImage*>> images(2);
     for (int t = 0; t < g.Terms(); ++t)
         for (const ViewGeometry& vg : geo) images[static_cast<size_t>(t)].push_back(&vg.cov[t]);
+    const runtime::DirectImages* direct = c.Direct(g);
     Solve(c,
           Observations(c.opt, geo, g.Terms(), v, images, runtime::SingleLayerShell(g), g.emOrigin),
-          odir, Report(v, g, 0, term, "single"));
+          odir, Report(v, g, 0, term, "single"), direct ? &direct->levels.back() : nullptr);
 }
 
 // Mirror-only groups: the PEM paper's local/distant split on the model's own vertices; a
@@ -630,7 +692,7 @@ InferJobResult RunInferJob(const InferJobOptions& opt) {
     const trace::Tracer tracer(scene, embree, tm.Tracing());
     // Step 2: every sample, one after the other.
     const std::vector<int> views = SamplesToInfer(opt, tm);
-    Context c{opt, tm, scene, embree, tracer, tm.Cameras(), &result, 0, 0};
+    Context c{opt, tm, scene, embree, tracer, tm.Cameras(), &result, 0, 0, {}};
     for (const runtime::LensGroupEm& g : tm.groups)
         c.mapsTotal += static_cast<int>(g.layers.size()) + (opt.single ? 1 : 0) + (g.pem ? 2 : 0);
     c.mapsTotal *= static_cast<int>(views.size());

@@ -8,6 +8,7 @@
 
 #include "base/parallel.h"
 #include "raster/cube_lookup.h"
+#include "trace/layers.h"
 #include "trace/segment.h"
 
 namespace pem::runtime {
@@ -75,6 +76,24 @@ std::vector<float> HalveLevel(const std::vector<float>& cur, int faces, int w, i
     return next;
 }
 
+// The layering of a group as trace/layers.h's LayerOf reads it: each layer's radius, each
+// scene object's layer (by name; -1 when no layer lists it).
+trace::GroupLayers LayeringOf(const trace::Scene& scene, const LensGroupEm& g) {
+    trace::GroupLayers gl;
+    gl.group = g.index;
+    gl.emOrigin = g.emOrigin;
+    gl.objectLayer.assign(scene.objects.size(), -1);
+    for (size_t l = 0; l < g.layers.size(); ++l) {
+        trace::LayerCluster c;
+        c.radius = g.layers[l].radius;
+        gl.clustering.layers.push_back(c);
+        for (const std::string& name : g.layers[l].objects)
+            for (size_t o = 0; o < scene.objects.size(); ++o)
+                if (scene.objects[o].name == name) gl.objectLayer[o] = static_cast<int>(l);
+    }
+    return gl;
+}
+
 }  // namespace
 
 std::vector<raster::Texture> TraceStaticMap(const trace::Tracer& tracer, int group,
@@ -107,6 +126,37 @@ raster::Texture TraceStaticMap(const trace::Tracer& tracer, int group, const glm
     cube.width = cube.height = size;
     cube.charts = 6;
     return std::move(TraceStaticMap(tracer, group, origin, cube, threads).front());
+}
+
+DirectImages TraceDirectImages(const trace::Tracer& tracer, const LensGroupEm& group, int size,
+                               int threads) {
+    const trace::GroupLayers layering = LayeringOf(tracer.scene(), group);
+    const size_t layers = group.layers.size(), texels = 6 * static_cast<size_t>(size * size);
+    DirectImages out;
+    out.size = size;
+    out.levels.assign(layers + 1, {std::vector<float>(4 * texels, 0.0f)});
+    // Step: level 0 of every layer, row by row, and of the whole environment (the static map's).
+    MapLayout cube;
+    cube.width = cube.height = size;
+    cube.charts = 6;
+    base::ParallelFor(6 * size, threads, [&](int row) {
+        const int f = row / size, j = row % size;
+        trace::RayCounts counts;
+        for (int i = 0; i < size; ++i) {
+            const raster::Ray ray{group.emOrigin, TexelDirection(cube, f, i, j, glm::mat3(1.0f))};
+            const std::vector<glm::vec4> c =
+                trace::LayerColours(tracer, layering, ray, tracer.options().fullTreeDepth, counts);
+            const size_t at = ((static_cast<size_t>(f) * size + j) * size + i) * 4;
+            for (size_t l = 0; l < layers; ++l)
+                for (int k = 0; k < 4; ++k) out.levels[l][0][at + k] = c[l][k];
+        }
+    });
+    out.levels[layers][0] =
+        TraceLevel0(tracer, group.index, group.emOrigin, cube, glm::mat3(1.0f), threads);
+    // Step: the MIP levels.
+    for (auto& chain : out.levels)
+        for (int w = size; w > 1; w /= 2) chain.push_back(HalveLevel(chain.back(), 6, w, w));
+    return out;
 }
 
 }  // namespace pem::runtime

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "raster/frame.h"
+#include "runtime/lens_group_em.h"
 #include "runtime/parameterization.h"
 #include "trace/tracer.h"
 
@@ -29,5 +30,18 @@ std::vector<raster::Texture> TraceStaticMap(const trace::Tracer& tracer, int gro
                                             const glm::vec3& origin, const MapLayout& layout,
                                             int threads,
                                             const glm::mat3& worldFromEye = glm::mat3(1.0f));
+
+// The direct images of a lens group's layers (hybrid §4.3: the environment seen from the EM
+// origin, the group left out): per layer a cube of face size n, every MIP level (2×2 means),
+// RGBA floats in radiance, premultiplied, alpha 1 where the layer has a hit along the texel
+// centre's direction (trace::LayerColours; the outermost layer the environment where it has
+// none); after the layers, the whole environment (the nearest hit: the static map's floats, as
+// the single-layer map sees it). Inference fills the texels no sample observes from them.
+struct DirectImages {
+    int size = 0;
+    std::vector<std::vector<std::vector<float>>> levels;  // [layer or single][level] faces×n×n×4
+};
+DirectImages TraceDirectImages(const trace::Tracer& tracer, const LensGroupEm& group, int size,
+                               int threads);
 
 }  // namespace pem::runtime

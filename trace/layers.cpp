@@ -207,6 +207,22 @@ int LayerOf(const GroupLayers& layers, int object, double distance) {
     return best;
 }
 
+std::vector<glm::vec4> LayerColours(const Tracer& tracer, const GroupLayers& layers, const Ray& ray,
+                                    int depthBudget, RayCounts& counts) {
+    const size_t n = layers.clustering.layers.size();
+    std::vector<glm::vec4> out(n, glm::vec4(0.0f));
+    for (const Hit& h : EnvironmentHits(tracer, ray, layers.group, counts)) {
+        const glm::vec3 p = ray.origin + h.t * ray.dir;
+        const auto l = static_cast<size_t>(
+            LayerOf(layers, h.object, glm::length(glm::dvec3(p) - glm::dvec3(layers.emOrigin))));
+        if (out[l].a > 0.0f) continue;
+        out[l] = glm::vec4(tracer.HitRadiance(ray, h, depthBudget, 1.0, counts), 1.0f);
+    }
+    if (n > 0 && out[n - 1].a == 0.0f)
+        out[n - 1] = glm::vec4(EnvRadiance(tracer.scene().environment, ray.dir), 1.0f);
+    return out;
+}
+
 namespace {
 
 struct LayerPainter {
@@ -218,21 +234,10 @@ struct LayerPainter {
 
     // The layer colours seen along one exit ray.
     void Exit(const TermSample& term, int t, glm::ivec2 cell, RayCounts& counts) const {
-        const size_t n = layers.clustering.layers.size();
-        std::vector<char> filled(n, 0);
         const int budget = tracer.options().fullTreeDepth - term.events;
-        for (const Hit& h : EnvironmentHits(tracer, term.exit, layers.group, counts)) {
-            const glm::vec3 p = term.exit.origin + h.t * term.exit.dir;
-            const int l =
-                LayerOf(layers, h.object, glm::length(glm::dvec3(p) - glm::dvec3(layers.emOrigin)));
-            if (filled[static_cast<size_t>(l)]) continue;
-            filled[static_cast<size_t>(l)] = 1;
-            out.samples[t][static_cast<size_t>(l)].Add(
-                cell.x, cell.y, tracer.HitRadiance(term.exit, h, budget, 1.0, counts), 1.0f);
-        }
-        if (!filled[n - 1])
-            out.samples[t][n - 1].Add(cell.x, cell.y,
-                                      EnvRadiance(tracer.scene().environment, term.exit.dir), 1.0f);
+        const std::vector<glm::vec4> c = LayerColours(tracer, layers, term.exit, budget, counts);
+        for (size_t l = 0; l < c.size(); ++l)
+            if (c[l].a > 0.0f) out.samples[t][l].Add(cell.x, cell.y, glm::vec3(c[l]), 1.0f);
     }
 
     void Pixel(int x, int y, RayCounts& counts) const {

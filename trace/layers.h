@@ -85,6 +85,14 @@ double ShellParallax(const Shell& shell, std::span<const RayHit> hits, const glm
 // The layer of a hit on `object` at `distance` from the EM origin.
 int LayerOf(const GroupLayers& layers, int object, double distance);
 
+// The layers' colours along a ray leaving the lens group (an exit ray, or a ray from the EM
+// origin: the direct images of the environment, hybrid §4.3), as RenderLayers gives them: per
+// layer the radiance of its first front-facing hit seen along the ray and alpha 1; the outermost
+// layer without a hit the environment along the ray; the others (0, 0, 0, 0). `depthBudget`: the
+// ray tree depth left for the hits' shading.
+std::vector<glm::vec4> LayerColours(const Tracer& tracer, const GroupLayers& layers, const Ray& ray,
+                                    int depthBudget, RayCounts& counts);
+
 struct LayerImages {
     std::vector<FloatImage> term[2];     // [τ][layer], RGBA
     std::vector<FloatImage> samples[2];  // the same as K× sample images (image.h SampleCell)
