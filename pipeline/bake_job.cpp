@@ -178,6 +178,7 @@ BakeJobOptions DemoBakeOptions() {
     o.infer.maxRes = 512;
     o.infer.tessT = 1.0;
     o.infer.hardware.format = raster::TexelFormat::Rgba32F;
+    o.infer.weights.smooth = DefaultSmooth(o.infer.hardware.format);
     return o;
 }
 

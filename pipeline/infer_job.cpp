@@ -37,6 +37,11 @@
 
 namespace pem::pipeline {
 
+double DefaultSmooth(raster::TexelFormat format) {
+    const double solver = infer::RegularizerWeights{}.smooth;
+    return format == raster::TexelFormat::Rgba32F ? 10.0 * solver : solver;
+}
+
 infer::SolveOptions DefaultSolveOptions() {
     infer::SolveOptions s;
     s.maxIterations = 150;

@@ -55,6 +55,7 @@ int RunBakeCommand() {
     const BakeArgs& a = Args();
     pipeline::BakeJobOptions o = a.job;
     std::tie(o.trace.width, o.trace.height) = ParseSize(a.size);
+    o.infer.weights.smooth = pipeline::DefaultSmooth(o.infer.hardware.format);
     RunBake(o, a.quiet);
     return 0;
 }

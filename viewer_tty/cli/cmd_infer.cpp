@@ -19,6 +19,7 @@ struct InferArgs {
     pipeline::InferJobOptions job;
     std::string views;
     bool quiet = false;
+    CLI::Option* smooth = nullptr;  // given or not: the default depends on --map-format
 };
 
 InferArgs& Args() {
@@ -66,7 +67,9 @@ void AddInferCommand(CLI::App& app) {
     sub->add_option("--t", o.tessT, "tessellation t (subpixels)")->check(CLI::Range(0.25, 1e4));
     sub->add_option("--max-iterations", o.solve.maxIterations, "LSMR iterations per map")
         ->check(CLI::Range(1, 100000));
-    sub->add_option("--smooth", o.weights.smooth, "lambda_s")->check(CLI::Range(0.0, 1e6));
+    a.smooth =
+        sub->add_option("--smooth", o.weights.smooth, "lambda_s (default 1e-3; float maps 1e-2)")
+            ->check(CLI::Range(0.0, 1e6));
     sub->add_option("--pyramid", o.weights.pyramid, "lambda_p")->check(CLI::Range(0.0, 1e6));
     sub->add_option("--prior", o.weights.prior, "lambda_0")->check(CLI::Range(0.0, 1e6));
     sub->add_option("--export-system", o.exportDir, "write K, h, x in Matrix Market format");
@@ -79,6 +82,7 @@ void AddInferCommand(CLI::App& app) {
 int RunInferCommand() {
     const InferArgs& a = Args();
     pipeline::InferJobOptions o = a.job;
+    if (a.smooth->count() == 0) o.weights.smooth = pipeline::DefaultSmooth(o.hardware.format);
     o.views = a.views.empty() ? std::vector<int>{} : ParseViewList(a.views);
     CreateDirectory(o.outDir);
     if (!o.exportDir.empty()) CreateDirectory(o.exportDir);
