@@ -68,10 +68,10 @@ infer::SolveOptions DefaultSolveOptions();
 
 // The smoothness weight λs for maps of `format` when none is given (--smooth): the solver's
 // default (infer::RegularizerWeights) for 8-bit maps, 10× it for float maps — without bounds,
-// texels that a single view constrains overshoot into speckles off the samples. Scene (a) at
-// the demo's settings, lens pixels against the 6×6 reference: 10° above the circle +0.42 dB,
-// between the samples +0.65 dB; at the samples the outside check loses 0.4–0.75 dB (teapot
-// 32.38 → 31.63 at sample 0).
+// texels that a single view constrains overshoot into speckles off the samples. The demo's
+// report (scene (a), lens pixels against the 6×6 reference): hybrid 10° above the circle
+// 20.20 → 20.41 dB, between the samples 21.52 → 21.94 dB; at the samples the outside check
+// loses 0.3–0.75 dB (teapot 32.38 → 31.63 at sample 0).
 double DefaultSmooth(raster::TexelFormat format);
 
 struct InferJobOptions {
