@@ -248,21 +248,21 @@ struct LayerUse {
     std::string name[2];
 };
 
-// The layers drawn, innermost first. PEM split: local over distant (no local map: a convex
-// reflector); single layer: the `single` map on its sphere (without it: the outermost layer);
-// layers of empty clusters have no maps.
+// The layers drawn, innermost first. Single layer: the `single` map on its sphere (without it:
+// the outermost layer, or the PEM split's distant map); PEM split: local over distant (no local
+// map: a convex reflector); layers of empty clusters have no maps.
 std::vector<LayerUse> LayerUses(const MapSet& maps, const LensGroupEm& g,
                                 const trace::Shell& single, int layersSetting, bool pemSplit,
                                 int sample) {
     std::vector<LayerUse> uses;
-    if (pemSplit) {
-        if (maps.map(sample, g.index, "pem_local"))
-            uses.push_back({&g.localShell, {"pem_local", ""}});
-        uses.push_back({&g.distantShell, {"pem_distant", ""}});
-        return uses;
-    }
     if (layersSetting == 1 && maps.map(sample, g.index, "single")) {
         uses.push_back({&single, {"single", "single"}});
+        return uses;
+    }
+    if (pemSplit) {
+        if (layersSetting != 1 && maps.map(sample, g.index, "pem_local"))
+            uses.push_back({&g.localShell, {"pem_local", ""}});
+        uses.push_back({&g.distantShell, {"pem_distant", ""}});
         return uses;
     }
     const int layers = static_cast<int>(g.layers.size());

@@ -246,6 +246,35 @@ TEST(Renderer, OpaqueInnerLayerHidesTheOuterOne) {
     EXPECT_EQ(f.image.data, g.image.data);  // the outer colour never shows through alpha 1
 }
 
+// A mirror drawn with the PEM paper's local/distant split: its single-layer PEM is the `single`
+// map (the baseline the split is compared with), not the split again.
+TEST(Renderer, SingleLayerPemOfASplitMirrorIsItsSingleMap) {
+    Fixture fx;
+    MapSet maps = fx.Maps();
+    LensGroupEm& g = maps.groups[0];
+    g.pem = true;
+    g.localShell = trace::SphereShell{glm::dvec3(g.emOrigin), 1.5};
+    g.distantShell = trace::SphereShell{glm::dvec3(g.emOrigin), 6.0};
+    for (int v : {0, 1}) {
+        fx.Set(v, "pem_distant", Constant(8, 200, 10, 10, 255));
+        fx.Set(v, "single", Constant(8, 10, 10, 200, 255));
+    }
+    Renderer r(fx.scene, maps, 2);
+    RenderSettings layered = Settings(Method::Pem), single = layered;
+    single.layers = 1;
+    const RenderedFrame split = r.Render(r.SampleCamera(0), layered);
+    const RenderedFrame one = r.Render(r.SampleCamera(0), single);
+    ASSERT_GT(LensPixels(split), 100u);
+    size_t red = 0, blue = 0;
+    for (size_t p = 0; p < split.lensMask.size(); ++p) {
+        if (!split.lensMask[p]) continue;
+        red += split.image.data[3 * p] > 0.5f && split.image.data[3 * p + 2] < 0.2f;
+        blue += one.image.data[3 * p + 2] > 0.5f && one.image.data[3 * p] < 0.2f;
+    }
+    EXPECT_GT(red, LensPixels(split) * 9 / 10);   // the distant map
+    EXPECT_GT(blue, LensPixels(split) * 9 / 10);  // the single map
+}
+
 TEST(Renderer, TwoSamplesBlendAsTheirWeightedFrames) {
     Fixture fx;
     auto frameWith = [&](uint8_t v0, uint8_t v1) {
