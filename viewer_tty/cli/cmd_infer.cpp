@@ -67,9 +67,12 @@ void AddInferCommand(CLI::App& app) {
     sub->add_option("--t", o.tessT, "tessellation t (subpixels)")->check(CLI::Range(0.25, 1e4));
     sub->add_option("--max-iterations", o.solve.maxIterations, "LSMR iterations per map")
         ->check(CLI::Range(1, 100000));
+    char smoothHelp[96];
+    std::snprintf(smoothHelp, sizeof smoothHelp, "lambda_s (default %g; float maps %g)",
+                  pipeline::DefaultSmooth(raster::TexelFormat::Rgba8),
+                  pipeline::DefaultSmooth(raster::TexelFormat::Rgba32F));
     a.smooth =
-        sub->add_option("--smooth", o.weights.smooth, "lambda_s (default 1e-3; float maps 1e-2)")
-            ->check(CLI::Range(0.0, 1e6));
+        sub->add_option("--smooth", o.weights.smooth, smoothHelp)->check(CLI::Range(0.0, 1e6));
     sub->add_option("--pyramid", o.weights.pyramid, "lambda_p")->check(CLI::Range(0.0, 1e6));
     sub->add_option("--prior", o.weights.prior, "lambda_0")->check(CLI::Range(0.0, 1e6));
     sub->add_option("--export-system", o.exportDir, "write K, h, x in Matrix Market format");
