@@ -631,15 +631,7 @@ void SolvePemMaps(Context& c, int v, const runtime::LensGroupEm& g, const std::s
         in.passes = runtime::LayerPass(m.Pass(), which == 0 ? offHull : m.order,
                                        runtime::ShellCoords(m.exits, shell, g.emOrigin), m.exits,
                                        m.viewProjection, po);
-        // Texels no sample observes: the distant map from the whole environment's direct image,
-        // the local one transparent (the reflector does not see itself there, as far as known).
-        const runtime::DirectImages* direct = c.Direct(g);
-        std::vector<std::vector<float>> none;
-        if (direct)
-            for (const std::vector<float>& level : direct->levels.back())
-                none.emplace_back(level.size(), 0.0f);
-        Solve(c, {in}, odir, Report(v, g, which, "pem", which == 0 ? "pem_local" : "pem_distant"),
-              direct ? (which == 0 ? &none : &direct->levels.back()) : nullptr);
+        Solve(c, {in}, odir, Report(v, g, which, "pem", which == 0 ? "pem_local" : "pem_distant"));
     }
 }
 
