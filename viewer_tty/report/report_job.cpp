@@ -149,8 +149,8 @@ void PipelineLeftOut(const pipeline::TraceManifest& tm, const pipeline::InferRec
             data->leftOut.push_back(
                 {name,
                  std::to_string(filled) + " texels (incl. whole MIP levels) out of the solves",
-                 "no pixel of the sample samples them: filled afterwards (cube maps: from the "
-                 "direct images of the environment)",
+                 "no pixel of the sample samples them: filled afterwards (cube layer and "
+                 "single-layer maps: from the direct images of the environment)",
                  solveSeconds * static_cast<double>(filled) / static_cast<double>(observed)});
     }
 }
