@@ -128,6 +128,9 @@ using Layers = std::vector<std::vector<raster::ImageF>>;
 // stage by at most 0.1 dB but the cup's nonnegative fit (+1.0 dB); 100 iterations started from
 // the fit before, clamped, end 0.3–2.9 dB lower than these.
 constexpr int kIterations = 300;
+// The unbounded fits (float maps' stages, the first fit of 8-bit maps'): on scene (a) with float
+// maps 150 iterations give every stage of the budget to 0.01 dB as 300 do, in 0.7 of the time.
+constexpr int kUnboundedIterations = 150;
 
 // One layer's system at one resolution, RGB in the units radiance / scale.
 infer::LinearSystem BuildLayerSystem(const raster::RenderingMatrix& a, int res, int width,
@@ -145,7 +148,7 @@ infer::LinearSystem BuildLayerSystem(const raster::RenderingMatrix& a, int res, 
 infer::Vector Fit(const infer::LinearSystem& sys, infer::Bounds bounds, int threads) {
     infer::SolveOptions so;
     so.bounds = bounds;
-    so.maxIterations = kIterations;
+    so.maxIterations = bounds.Active() ? kIterations : kUnboundedIterations;
     so.atol = 1e-7;
     so.logEvery = 0;
     so.threads = threads;
