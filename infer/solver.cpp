@@ -246,31 +246,53 @@ Channels SumBlocks(const std::vector<Channels>& partial) {
     return total;
 }
 
-// Over the rows of q in blocks of kQuadsPerBlock: s = Σ_k val_k · in(col_k, c) per channel, then
-// out(r, s) stores row r and returns its squared values; returns their sum (blocked order).
-template <class In, class Out>
-Channels BlockedRowProducts(const CsrMatrix& q, const In& in, const Out& out,
-                            std::vector<Channels>* partial, int threads) {
+// Over the rows of q in blocks of kQuadsPerBlock: s = Σ_k val_k · in[4 col_k + c] per channel
+// (each channel's sum in entry order), then out(r, s) stores row r and returns its squared
+// values; returns their sum (blocked order). Scaled: in[..] is read as in[..] · scale[c]. The
+// gathers are prefetched kGatherAhead entries ahead (sparse.h).
+template <bool Scaled, class Out>
+Channels BlockedRowProducts(const CsrMatrix& q, const double* in, const Channels& scale,
+                            const Out& out, std::vector<Channels>* partial, int threads) {
     const int64_t blocks = (q.rows + kQuadsPerBlock - 1) / kQuadsPerBlock;
     partial->assign(static_cast<size_t>(blocks), Channels{});
-    base::ForRanges(blocks, threads, 2, [&](int64_t b0, int64_t b1) {
-        for (int64_t b = b0; b < b1; ++b) {
-            Channels acc{};
-            const int64_t end = std::min(q.rows, (b + 1) * kQuadsPerBlock);
-            for (int64_t r = b * kQuadsPerBlock; r < end; ++r) {
-                double s[kChannels] = {0.0, 0.0, 0.0, 0.0};
-                const int64_t e = q.rowPtr[static_cast<size_t>(r) + 1];
-                for (int64_t k = q.rowPtr[static_cast<size_t>(r)]; k < e; ++k) {
-                    const double v = q.val[static_cast<size_t>(k)];
-                    const size_t t = size_t{kChannels} * q.col[static_cast<size_t>(k)];
-                    for (size_t c = 0; c < kChannels; ++c) s[c] += v * in(t, c);
+    const int64_t* rowPtr = q.rowPtr.data();
+    const uint32_t* col = q.col.data();
+    const double* val = q.val.data();
+    const int64_t nnz = q.NonZeros();
+    Channels* sums = partial->data();
+    const double m0 = scale[0], m1 = scale[1], m2 = scale[2], m3 = scale[3];
+    base::ForRanges(
+        blocks, threads, 2, [&, rowPtr, col, val, in, nnz, sums](int64_t b0, int64_t b1) {
+            for (int64_t b = b0; b < b1; ++b) {
+                Channels acc{};
+                const int64_t end = std::min(q.rows, (b + 1) * kQuadsPerBlock);
+                for (int64_t r = b * kQuadsPerBlock; r < end; ++r) {
+                    double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0;
+                    const int64_t e = rowPtr[r + 1];
+                    for (int64_t k = rowPtr[r]; k < e; ++k) {
+                        if (k + kGatherAhead < nnz)
+                            __builtin_prefetch(in + size_t{kChannels} * col[k + kGatherAhead]);
+                        const double v = val[k];
+                        const double* t = in + size_t{kChannels} * col[k];
+                        if constexpr (Scaled) {
+                            s0 += v * (t[0] * m0);
+                            s1 += v * (t[1] * m1);
+                            s2 += v * (t[2] * m2);
+                            s3 += v * (t[3] * m3);
+                        } else {
+                            s0 += v * t[0];
+                            s1 += v * t[1];
+                            s2 += v * t[2];
+                            s3 += v * t[3];
+                        }
+                    }
+                    const double s[kChannels] = {s0, s1, s2, s3};
+                    const Channels sq = out(r, s);
+                    for (size_t c = 0; c < kChannels; ++c) acc[c] += sq[c];
                 }
-                const Channels sq = out(r, s);
-                for (size_t c = 0; c < kChannels; ++c) acc[c] += sq[c];
+                sums[b] = acc;
             }
-            (*partial)[static_cast<size_t>(b)] = acc;
-        }
-    });
+        });
     return SumBlocks(*partial);
 }
 
@@ -280,8 +302,8 @@ Channels FusedForward(const CsrMatrix& q, const Vector& vd, const Channels& invB
                       std::vector<Channels>* partial, int threads) {
     const double* xp = vd.data();
     double* up = uRaw->data();
-    return BlockedRowProducts(
-        q, [&](size_t t, size_t c) { return xp[t + c]; },
+    return BlockedRowProducts<false>(
+        q, xp, Channels{},
         [&](int64_t r, const double* s) {
             Channels sq{};
             double* ur = up + kChannels * r;
@@ -302,8 +324,8 @@ Channels FusedTranspose(const CsrMatrix& qt, const Vector& uRaw, const Channels&
                         std::vector<Channels>* partial, int threads) {
     const double* up = uRaw.data();
     double* vp = v->data();
-    return BlockedRowProducts(
-        qt, [&](size_t t, size_t c) { return up[t + c] * invBeta[c]; },
+    return BlockedRowProducts<true>(
+        qt, up, invBeta,
         [&](int64_t j, const double* s) {
             Channels sq{};
             const size_t base = static_cast<size_t>(kChannels * j);
@@ -333,16 +355,19 @@ Channels FusedUpdate(const Channels& invAlpha, const Vector& dm, const Channels&
         for (int64_t b = b0; b < b1; ++b) {
             Channels acc{};
             const size_t end = static_cast<size_t>(std::min(n, (b + 1) * kReduceBlock));
+            double *vp = f->v.data(), *vdp = f->vd.data(), *hp = f->h.data();
+            double *hbarp = f->hbar.data(), *yp = f->y.data();
+            const double* dmp = dm.data();
             for (size_t k = static_cast<size_t>(b * kReduceBlock); k < end; k += kChannels)
                 for (size_t c = 0; c < kChannels; ++c) {
                     const size_t e = k + c;
-                    const double v = f->v[e] * invAlpha[c];
-                    f->v[e] = v;
-                    f->vd[e] = dm[e] * v;
-                    f->hbar[e] = f->h[e] + cHbar[c] * f->hbar[e];
-                    f->y[e] += cY[c] * f->hbar[e];
-                    f->h[e] = v + cH[c] * f->h[e];
-                    acc[c] += f->y[e] * f->y[e];
+                    const double v = vp[e] * invAlpha[c];
+                    vp[e] = v;
+                    vdp[e] = dmp[e] * v;
+                    hbarp[e] = hp[e] + cHbar[c] * hbarp[e];
+                    yp[e] += cY[c] * hbarp[e];
+                    hp[e] = v + cH[c] * hp[e];
+                    acc[c] += yp[e] * yp[e];
                 }
             (*partial)[static_cast<size_t>(b)] = acc;
         }

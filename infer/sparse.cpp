@@ -198,13 +198,19 @@ void MultiplyQuads(const CsrMatrix& q, const Vector& x, Vector* y, int threads) 
     y->resize(static_cast<size_t>(kChannels * q.rows));
     const double* xp = x.data();
     double* yp = y->data();
-    base::ForRanges(q.rows, threads, 512, [&](int64_t r0, int64_t r1) {
+    const int64_t* rowPtr = q.rowPtr.data();
+    const uint32_t* col = q.col.data();
+    const double* val = q.val.data();
+    const int64_t nnz = q.NonZeros();
+    base::ForRanges(q.rows, threads, 512, [=](int64_t r0, int64_t r1) {
         for (int64_t r = r0; r < r1; ++r) {
             double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0;
-            const int64_t end = q.rowPtr[static_cast<size_t>(r) + 1];
-            for (int64_t k = q.rowPtr[static_cast<size_t>(r)]; k < end; ++k) {
-                const double v = q.val[static_cast<size_t>(k)];
-                const double* xt = xp + size_t{kChannels} * q.col[static_cast<size_t>(k)];
+            const int64_t end = rowPtr[r + 1];
+            for (int64_t k = rowPtr[r]; k < end; ++k) {
+                if (k + kGatherAhead < nnz)
+                    __builtin_prefetch(xp + size_t{kChannels} * col[k + kGatherAhead]);
+                const double v = val[k];
+                const double* xt = xp + size_t{kChannels} * col[k];
                 s0 += v * xt[0];
                 s1 += v * xt[1];
                 s2 += v * xt[2];

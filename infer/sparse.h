@@ -75,6 +75,10 @@ bool IsChannelDiagonal(const CsrMatrix& a);
 // The quad form of `a` (see above) when every quad of rows qualifies; false otherwise.
 bool QuadForm(const CsrMatrix& a, CsrMatrix* quads);
 
+// How many entries ahead the quad products prefetch what they will gather (x is scattered over
+// more than the caches hold; the matrix streams in order). Prefetching changes no arithmetic.
+inline constexpr int64_t kGatherAhead = 64;
+
 // y = A x for A in quad form (x and y interleaved by channel, 4 entries per column / row).
 void MultiplyQuads(const CsrMatrix& quads, const Vector& x, Vector* y, int threads);
 
