@@ -248,8 +248,8 @@ Channels SumBlocks(const std::vector<Channels>& partial) {
 
 // Over the rows of q in blocks of kQuadsPerBlock: s = Σ_k val_k · in[4 col_k + c] per channel
 // (each channel's sum in entry order), then out(r, s) stores row r and returns its squared
-// values; returns their sum (blocked order). Scaled: in[..] is read as in[..] · scale[c]. The
-// gathers are prefetched kGatherAhead entries ahead (sparse.h).
+// values; returns their sum (blocked order). Scaled: in[..] is read as in[..] · scale[c]
+// (sparse.h QuadRowSums).
 template <bool Scaled, class Out>
 Channels BlockedRowProducts(const CsrMatrix& q, const double* in, const Channels& scale,
                             const Out& out, std::vector<Channels>* partial, int threads) {
@@ -260,39 +260,21 @@ Channels BlockedRowProducts(const CsrMatrix& q, const double* in, const Channels
     const double* val = q.val.data();
     const int64_t nnz = q.NonZeros();
     Channels* sums = partial->data();
-    const double m0 = scale[0], m1 = scale[1], m2 = scale[2], m3 = scale[3];
-    base::ForRanges(
-        blocks, threads, 2, [&, rowPtr, col, val, in, nnz, sums](int64_t b0, int64_t b1) {
-            for (int64_t b = b0; b < b1; ++b) {
-                Channels acc{};
-                const int64_t end = std::min(q.rows, (b + 1) * kQuadsPerBlock);
-                for (int64_t r = b * kQuadsPerBlock; r < end; ++r) {
-                    double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0;
-                    const int64_t e = rowPtr[r + 1];
-                    for (int64_t k = rowPtr[r]; k < e; ++k) {
-                        if (k + kGatherAhead < nnz)
-                            __builtin_prefetch(in + size_t{kChannels} * col[k + kGatherAhead]);
-                        const double v = val[k];
-                        const double* t = in + size_t{kChannels} * col[k];
-                        if constexpr (Scaled) {
-                            s0 += v * (t[0] * m0);
-                            s1 += v * (t[1] * m1);
-                            s2 += v * (t[2] * m2);
-                            s3 += v * (t[3] * m3);
-                        } else {
-                            s0 += v * t[0];
-                            s1 += v * t[1];
-                            s2 += v * t[2];
-                            s3 += v * t[3];
+    const Channels sc = scale;
+    base::ForRanges(blocks, threads, 2,
+                    [&, rowPtr, col, val, in, nnz, sums, sc](int64_t b0, int64_t b1) {
+                        for (int64_t b = b0; b < b1; ++b) {
+                            Channels acc{};
+                            const int64_t end = std::min(q.rows, (b + 1) * kQuadsPerBlock);
+                            for (int64_t r = b * kQuadsPerBlock; r < end; ++r) {
+                                double s[kChannels];
+                                QuadRowSums<Scaled>(rowPtr, col, val, nnz, r, in, sc, s);
+                                const Channels sq = out(r, s);
+                                for (size_t c = 0; c < kChannels; ++c) acc[c] += sq[c];
+                            }
+                            sums[b] = acc;
                         }
-                    }
-                    const double s[kChannels] = {s0, s1, s2, s3};
-                    const Channels sq = out(r, s);
-                    for (size_t c = 0; c < kChannels; ++c) acc[c] += sq[c];
-                }
-                sums[b] = acc;
-            }
-        });
+                    });
     return SumBlocks(*partial);
 }
 

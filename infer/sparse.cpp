@@ -203,25 +203,8 @@ void MultiplyQuads(const CsrMatrix& q, const Vector& x, Vector* y, int threads) 
     const double* val = q.val.data();
     const int64_t nnz = q.NonZeros();
     base::ForRanges(q.rows, threads, 512, [=](int64_t r0, int64_t r1) {
-        for (int64_t r = r0; r < r1; ++r) {
-            double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0;
-            const int64_t end = rowPtr[r + 1];
-            for (int64_t k = rowPtr[r]; k < end; ++k) {
-                if (k + kGatherAhead < nnz)
-                    __builtin_prefetch(xp + size_t{kChannels} * col[k + kGatherAhead]);
-                const double v = val[k];
-                const double* xt = xp + size_t{kChannels} * col[k];
-                s0 += v * xt[0];
-                s1 += v * xt[1];
-                s2 += v * xt[2];
-                s3 += v * xt[3];
-            }
-            double* yr = yp + kChannels * r;
-            yr[0] = s0;
-            yr[1] = s1;
-            yr[2] = s2;
-            yr[3] = s3;
-        }
+        for (int64_t r = r0; r < r1; ++r)
+            QuadRowSums<false>(rowPtr, col, val, nnz, r, xp, Channels{}, yp + kChannels * r);
     });
 }
 

@@ -79,6 +79,34 @@ bool QuadForm(const CsrMatrix& a, CsrMatrix* quads);
 // more than the caches hold; the matrix streams in order). Prefetching changes no arithmetic.
 inline constexpr int64_t kGatherAhead = 64;
 
+// One row r of a quad form times x, per channel, each sum in entry order: s[c] = Σ_k val_k ·
+// x[4 col_k + c] (Scaled: x[..] · scale[c]). The arrays are passed bare so that the compiler keeps
+// them in registers in the products' loops.
+template <bool Scaled>
+inline void QuadRowSums(const int64_t* rowPtr, const uint32_t* col, const double* val, int64_t nnz,
+                        int64_t r, const double* x, const Channels& scale, double s[kChannels]) {
+    double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0;
+    const int64_t end = rowPtr[r + 1];
+    for (int64_t k = rowPtr[r]; k < end; ++k) {
+        if (k + kGatherAhead < nnz)
+            __builtin_prefetch(x + size_t{kChannels} * col[k + kGatherAhead]);
+        const double v = val[k];
+        const double* t = x + size_t{kChannels} * col[k];
+        if constexpr (Scaled) {
+            s0 += v * (t[0] * scale[0]);
+            s1 += v * (t[1] * scale[1]);
+            s2 += v * (t[2] * scale[2]);
+            s3 += v * (t[3] * scale[3]);
+        } else {
+            s0 += v * t[0];
+            s1 += v * t[1];
+            s2 += v * t[2];
+            s3 += v * t[3];
+        }
+    }
+    s[0] = s0, s[1] = s1, s[2] = s2, s[3] = s3;
+}
+
 // y = A x for A in quad form (x and y interleaved by channel, 4 entries per column / row).
 void MultiplyQuads(const CsrMatrix& quads, const Vector& x, Vector* y, int threads);
 
