@@ -21,8 +21,9 @@ struct ImageBlock {
 
 // Keep whole pixels (4 rows, so row % 4 stays the channel) that have a row with confidence > 0
 // and a tap on the unknown texture; fold the other textures' taps (known texels) into the
-// right-hand side.
-ImageBlock SelectImageRows(const raster::RenderingMatrix& a, const Vector& known,
+// right-hand side. The block takes over a's entry storage and compacts it in place (each kept
+// entry moves to an index no later than its own), so the matrix is never held twice.
+ImageBlock SelectImageRows(raster::RenderingMatrix&& a, const Vector& known,
                            const TexelLayout& layout, uint32_t firstTexel, const Target& target) {
     const uint64_t colBegin = uint64_t{kChannels} * firstTexel;
     const uint64_t colEnd =
@@ -32,20 +33,21 @@ ImageBlock SelectImageRows(const raster::RenderingMatrix& a, const Vector& known
             target.confidence.empty() ? 1.0 : target.confidence[static_cast<size_t>(r)];
         return w > 0.0 ? w : 0.0;
     };
+    ImageBlock blk;
+    blk.a.cols = static_cast<int64_t>(colEnd - colBegin);
+    blk.a.col = std::move(a.col);
+    blk.a.val = std::move(a.val);
+    blk.a.rowPtr.reserve(a.rowPtr.size());  // at most every row
+    std::vector<uint32_t>& col = blk.a.col;
+    std::vector<double>& val = blk.a.val;
     auto unknownTaps = [&](int64_t r) {
         for (int64_t k = a.rowPtr[static_cast<size_t>(r)]; k < a.rowPtr[static_cast<size_t>(r) + 1];
              ++k)
-            if (a.col[static_cast<size_t>(k)] >= colBegin && a.col[static_cast<size_t>(k)] < colEnd)
+            if (col[static_cast<size_t>(k)] >= colBegin && col[static_cast<size_t>(k)] < colEnd)
                 return true;
         return false;
     };
-    ImageBlock blk;
-    blk.a.cols = static_cast<int64_t>(colEnd - colBegin);
-    blk.a.rowPtr.reserve(a.rowPtr.size());  // at most every row, every tap
-    blk.a.col.reserve(a.col.size());
-    blk.a.val.reserve(a.val.size());
-    std::vector<uint32_t> cols;
-    std::vector<double> vals;
+    size_t at = 0;  // the next kept entry's index (never past the entry being read)
     for (int64_t p = 0; p < a.rows / kChannels; ++p) {
         // Step 1: is the pixel in the mask?
         bool keep = false;
@@ -54,28 +56,29 @@ ImageBlock SelectImageRows(const raster::RenderingMatrix& a, const Vector& known
         if (!keep) continue;
         // Step 2: its 4 rows, local columns, known taps folded into the constant.
         for (int64_t r = kChannels * p; r < kChannels * (p + 1); ++r) {
-            cols.clear();
-            vals.clear();
             double constant = a.offset[static_cast<size_t>(r)];
             for (int64_t k = a.rowPtr[static_cast<size_t>(r)];
                  k < a.rowPtr[static_cast<size_t>(r) + 1]; ++k) {
-                const uint32_t c = a.col[static_cast<size_t>(k)];
-                const double v = a.val[static_cast<size_t>(k)];
+                const uint32_t c = col[static_cast<size_t>(k)];
+                const double v = val[static_cast<size_t>(k)];
                 if (c >= colBegin && c < colEnd) {
                     const auto rel = static_cast<uint32_t>(c - colBegin);
-                    cols.push_back(4u * layout.LocalOfFrameOrder(rel / 4u) + rel % 4u);
-                    vals.push_back(v);
+                    col[at] = 4u * layout.LocalOfFrameOrder(rel / 4u) + rel % 4u;
+                    val[at++] = v;
                 } else {
                     constant += v * known[c];
                 }
             }
-            blk.a.AddRow(cols, vals);
+            blk.a.rowPtr.push_back(static_cast<int64_t>(at));
             blk.rhs.push_back(target.b[static_cast<size_t>(r)] - constant);
             blk.sqrtWeight.push_back(std::sqrt(weight(r)));
             blk.rowOf.push_back(r);
             blk.weightSum += weight(r);
         }
     }
+    blk.a.rows = static_cast<int64_t>(blk.rowOf.size());
+    col.resize(at);
+    val.resize(at);
     return blk;
 }
 
@@ -167,6 +170,13 @@ void RestrictColumns(CsrMatrix* m, const std::vector<int32_t>& index, int64_t co
 LinearSystem BuildSystem(const raster::RenderingMatrix& a, const raster::Frame& frame, int texture,
                          const Target& target, const RegularizerWeights& weights,
                          const SystemOptions& options) {
+    return BuildSystem(raster::RenderingMatrix(a), frame, texture, target, weights, options);
+}
+
+LinearSystem BuildSystem(raster::RenderingMatrix&& matrix, const raster::Frame& frame, int texture,
+                         const Target& target, const RegularizerWeights& weights,
+                         const SystemOptions& options) {
+    raster::RenderingMatrix a = std::move(matrix);  // released once its rows are selected
     // Check the inputs: one target value (and confidence) per row of A.
     const raster::Texture& tex = frame.textures.at(static_cast<size_t>(texture));
     if (static_cast<int64_t>(target.b.size()) != a.rows ||
@@ -185,7 +195,8 @@ LinearSystem BuildSystem(const raster::RenderingMatrix& a, const raster::Frame& 
     }
     sys.globalFirstTexel = raster::TexelIndexer(frame.textures).LevelBase(texture, 0);
     ImageBlock img =
-        SelectImageRows(a, TexelVector(frame), sys.layout, sys.globalFirstTexel, target);
+        SelectImageRows(std::move(a), TexelVector(frame), sys.layout, sys.globalFirstTexel, target);
+    a = raster::RenderingMatrix{};  // its row pointers, offsets and rendered values
     if (!IsChannelDiagonal(img.a))
         throw std::invalid_argument("BuildSystem: taps mix colour channels");
     sys.imageRowOf = img.rowOf;

@@ -73,6 +73,10 @@ struct LinearSystem {
 LinearSystem BuildSystem(const raster::RenderingMatrix& a, const raster::Frame& frame, int texture,
                          const Target& target, const RegularizerWeights& weights,
                          const SystemOptions& options = {});
+// The same, taking over A's storage (the largest part of the system; it is not held twice).
+LinearSystem BuildSystem(raster::RenderingMatrix&& a, const raster::Frame& frame, int texture,
+                         const Target& target, const RegularizerWeights& weights,
+                         const SystemOptions& options = {});
 
 // The solution over every local texel (4 per texel): unknowns copied, the other texels filled
 // smoothly — within a level that has unknowns, breadth-first from them, each texel the mean of

@@ -370,12 +370,12 @@ MapReport SolveMap(const std::vector<MapInput>& inputs, const InferJobOptions& o
         rep.levelsAccessed = LevelsAccessed(inputs, tm.width, tm.height, tm.spp, opt.maxRes, opt);
         rep.res = ResolutionAccessed(rep.levelsAccessed, opt.res, opt.maxRes);
     }
-    const StackedRows s = StackRows(inputs, tm.width, tm.height, tm.spp, rep.res, opt);
+    StackedRows s = StackRows(inputs, tm.width, tm.height, tm.spp, rep.res, opt);
     rep.matrixSeconds = Since(t0);
     infer::SystemOptions systemOptions = opt.system;  // the map's textures: its charts
     systemOptions.charts = runtime::MapTextures(opt.parameterization);
     const infer::LinearSystem sys =
-        infer::BuildSystem(s.a, s.frame, 0, s.target, opt.weights, systemOptions);
+        infer::BuildSystem(std::move(s.a), s.frame, 0, s.target, opt.weights, systemOptions);
     rep.buildSeconds = Since(t0);
     rep.rows = sys.k.Rows(), rep.cols = sys.Cols(), rep.nnz = sys.k.A().NonZeros();
     rep.observedTexels = static_cast<int64_t>(sys.active.size());
