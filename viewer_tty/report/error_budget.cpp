@@ -234,20 +234,28 @@ std::vector<double> HybridVsTraced(const runtime::RenderedFrame& hybrid,
     return out;
 }
 
+// The position's hybrid frame (at the maps' t), drawn unless the caller drew it.
+runtime::RenderedFrame HybridAt(runtime::Renderer& renderer, const BudgetPosition& at,
+                                const runtime::RenderSettings& s) {
+    return at.hybrid ? *at.hybrid : renderer.Render(at.camera, s);
+}
+
 // The same at an off-sample position, against the full tree (first) and the two-term frame
-// (second), all three frames rendered there.
+// (second), all three frames rendered there (or given).
 std::pair<std::vector<double>, std::vector<double>> HybridVsTracedAt(
-    runtime::Renderer& renderer, const raster::Camera& cam, const runtime::RenderSettings& s,
+    runtime::Renderer& renderer, const BudgetPosition& at, const runtime::RenderSettings& s,
     int spp) {
     runtime::RenderSettings rs = s;
     rs.method = runtime::Method::RayTraced;
     rs.spp = spp;
-    const runtime::RenderedFrame hybrid = renderer.Render(cam, s);
+    const runtime::RenderedFrame hybrid = HybridAt(renderer, at, s);
     const size_t groups = renderer.maps().groups.size();
     const trace::FloatImage twoTerm =
-        trace::RenderFrame(renderer.tracer(), cam, spp, trace::Model::Greedy, s.threads).image;
-    return {HybridVsTraced(hybrid, renderer.Render(cam, rs).image, groups),
-            HybridVsTraced(hybrid, twoTerm, groups)};
+        trace::RenderFrame(renderer.tracer(), at.camera, spp, trace::Model::Greedy, s.threads)
+            .image;
+    const trace::FloatImage full =
+        at.traced ? at.traced->image : renderer.Render(at.camera, rs).image;
+    return {HybridVsTraced(hybrid, full, groups), HybridVsTraced(hybrid, twoTerm, groups)};
 }
 
 }  // namespace
@@ -260,8 +268,7 @@ std::vector<GroupBudget> ErrorBudget(runtime::Renderer& renderer,
     s.threads = threads;
     std::vector<GroupBudget> out;
     // Step 1: the stages at the sample.
-    const raster::Camera sample = renderer.SampleCamera(renderer.maps().inferred.front());
-    const runtime::RenderedFrame hybrid = renderer.Render(sample, s);
+    const runtime::RenderedFrame hybrid = HybridAt(renderer, positions[0], s);
     for (const runtime::LensGroupEm& g : renderer.maps().groups)
         out.push_back(SampleBudget(renderer, trace, g, hybrid, s));
     // Step 2: off the samples, against the same measures at the sample (the trace's reference
@@ -273,8 +280,7 @@ std::vector<GroupBudget> ErrorBudget(runtime::Renderer& renderer,
     const std::vector<double> atSampleVsTarget =
         HybridVsTraced(hybrid, pipeline::ReadFrameImage(trace, view, "greedy"), groups);
     for (size_t k = 1; k < positions.size(); ++k) {
-        const auto [there, thereVsTarget] =
-            HybridVsTracedAt(renderer, positions[k].camera, s, trace.spp);
+        const auto [there, thereVsTarget] = HybridVsTracedAt(renderer, positions[k], s, trace.spp);
         for (const runtime::LensGroupEm& g : renderer.maps().groups) {
             GroupBudget b{GroupName(g), positions[k].name, 0, {}};
             const size_t i = size_t(g.index);

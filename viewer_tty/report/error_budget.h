@@ -34,6 +34,7 @@
 // Not here: the documents (report_writer.h: GroupBudget, the table and budget.svg).
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -47,6 +48,9 @@ namespace pem::report {
 struct BudgetPosition {
     std::string name;
     raster::Camera camera;
+    // Frames the caller drew there already, else drawn here: the hybrid frame at the maps' t
+    // (RenderSettings t = 0) and the full-tree ray tracer at the trace's K×K.
+    std::optional<runtime::RenderedFrame> hybrid, traced;
 };
 
 // positions[0] is the first inferred sample; the others are off the samples.

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <thread>
 
 #include "base/display_image.h"
@@ -83,10 +84,12 @@ raster::Camera WarmCamera(raster::Camera camera) {
 }
 
 // Every method at one position against the reference, frames written to viewsDir; the reference
-// and its lens pixels returned (for the packed PEMs).
+// and its lens pixels returned (for the packed PEMs), the frames the error budget compares kept
+// in `budget` (budgetSpp: the trace's K×K; 0 without a trace).
 PackReference MeasurePosition(runtime::Renderer& renderer, const Position& pos,
                               const std::vector<MethodRun>& runs, const ReportJobOptions& o,
-                              const std::string& viewsDir, ReportData* data) {
+                              const std::string& viewsDir, int budgetSpp, BudgetPosition* budget,
+                              ReportData* data) {
     if (o.log) o.log(pos.name + ": reference");
     runtime::RenderSettings ref;
     ref.method = runtime::Method::RayTraced;
@@ -112,6 +115,10 @@ PackReference MeasurePosition(runtime::Renderer& renderer, const Position& pos,
         r.scores8 = Compare8Bit(img, refImage, &mask);
         data->results.push_back(r);
         WriteFramePng(viewsDir + "/" + pos.file + "_" + run.file + ".png", f.image);
+        const runtime::RenderSettings& rs = run.settings;
+        if (rs.method == runtime::Method::Hybrid && rs.t == renderer.maps().tessT)
+            budget->hybrid = f;
+        if (rs.method == runtime::Method::RayTraced && rs.spp == budgetSpp) budget->traced = f;
     }
     return {pos.name, pos.camera, refImage, mask};
 }
@@ -225,23 +232,26 @@ void RunReportJob(const ReportJobOptions& o) {
     const std::vector<Position> positions = Positions(*renderer);
     const std::string viewsDir = o.dir + "/views";
     std::filesystem::create_directories(viewsDir);
-    std::vector<PackReference> references;
-    for (const Position& pos : positions)
-        references.push_back(MeasurePosition(
-            *renderer, pos, Methods(renderer->maps().tessT, o.threads), o, viewsDir, &data));
-    // Step 2: what the pipeline and the run time left out.
     const std::string traceDir = pipeline::BakeTraceDir(o.dir);
-    if (std::filesystem::exists(traceDir + "/" + pipeline::kTraceJson) &&
-        std::filesystem::exists(pemDir + "/" + pipeline::kInferJson))
-        PipelineLeftOut(pipeline::ReadTraceManifest(traceDir), pipeline::ReadInferJson(pemDir),
-                        &data);
+    std::optional<pipeline::TraceManifest> trace;
+    if (std::filesystem::exists(traceDir + "/" + pipeline::kTraceJson))
+        trace = pipeline::ReadTraceManifest(traceDir);
+    std::vector<PackReference> references;
+    std::vector<BudgetPosition> at;
+    for (const Position& pos : positions) {
+        at.push_back({pos.name, pos.camera, {}, {}});
+        references.push_back(MeasurePosition(*renderer, pos,
+                                             Methods(renderer->maps().tessT, o.threads), o,
+                                             viewsDir, trace ? trace->spp : 0, &at.back(), &data));
+    }
+    // Step 2: what the pipeline and the run time left out.
+    if (trace && std::filesystem::exists(pemDir + "/" + pipeline::kInferJson))
+        PipelineLeftOut(*trace, pipeline::ReadInferJson(pemDir), &data);
     RunTimeLeftOut(*renderer, positions[0].camera, o.threads, &data);
     // Step 3: the error budget (with the trace's images at the first sample).
-    if (std::filesystem::exists(traceDir + "/" + pipeline::kTraceJson)) {
+    if (trace) {
         if (o.log) o.log("error budget");
-        std::vector<BudgetPosition> at;
-        for (const Position& p : positions) at.push_back({p.name, p.camera});
-        data.budget = ErrorBudget(*renderer, pipeline::ReadTraceManifest(traceDir), at, o.threads);
+        data.budget = ErrorBudget(*renderer, *trace, at, o.threads);
     }
     // Step 4: packed PEMs, their size against the frames drawn from them.
     // (A pack holds 8-bit maps: a PEM of float maps is not packed, and the report says so.)
