@@ -11,6 +11,30 @@
 namespace pem::infer {
 namespace {
 
+// A frame's texel bytes (TexelVector's order: textures, levels, bytes) read in place, / 255:
+// the known texels a row taps, without a copy of the whole frame.
+class KnownTexels {
+  public:
+    explicit KnownTexels(const raster::Frame& frame) {
+        for (const raster::Texture& t : frame.textures)
+            for (const auto& level : t.levels) {
+                starts_.push_back(next_);
+                data_.push_back(level.data());
+                next_ += level.size();
+            }
+    }
+    double operator[](uint64_t i) const {
+        const size_t s = static_cast<size_t>(std::upper_bound(starts_.begin(), starts_.end(), i) -
+                                             starts_.begin() - 1);
+        return data_[s][i - starts_[s]] / 255.0;
+    }
+
+  private:
+    std::vector<uint64_t> starts_;  // each level's first byte in the whole frame
+    std::vector<const uint8_t*> data_;
+    uint64_t next_ = 0;
+};
+
 struct ImageBlock {
     CsrMatrix a;        // kept rows, local columns
     Vector rhs;         // b - offset - known taps
@@ -23,7 +47,7 @@ struct ImageBlock {
 // and a tap on the unknown texture; fold the other textures' taps (known texels) into the
 // right-hand side. The block takes over a's entry storage and compacts it in place (each kept
 // entry moves to an index no later than its own), so the matrix is never held twice.
-ImageBlock SelectImageRows(raster::RenderingMatrix&& a, const Vector& known,
+ImageBlock SelectImageRows(raster::RenderingMatrix&& a, const KnownTexels& known,
                            const TexelLayout& layout, uint32_t firstTexel, const Target& target) {
     const uint64_t colBegin = uint64_t{kChannels} * firstTexel;
     const uint64_t colEnd =
@@ -195,7 +219,7 @@ LinearSystem BuildSystem(raster::RenderingMatrix&& matrix, const raster::Frame& 
     }
     sys.globalFirstTexel = raster::TexelIndexer(frame.textures).LevelBase(texture, 0);
     ImageBlock img =
-        SelectImageRows(std::move(a), TexelVector(frame), sys.layout, sys.globalFirstTexel, target);
+        SelectImageRows(std::move(a), KnownTexels(frame), sys.layout, sys.globalFirstTexel, target);
     a = raster::RenderingMatrix{};  // its row pointers, offsets and rendered values
     if (!IsChannelDiagonal(img.a))
         throw std::invalid_argument("BuildSystem: taps mix colour channels");
