@@ -67,12 +67,20 @@ inline float FastLog2(float x) {
     return static_cast<float>(e) + m;
 }
 
+// Round half to even of 0 <= x < 2^22 (nearbyint in the default rounding mode) without a libm
+// call (baseline x86-64 has no roundss): adding 1.5 * 2^23 leaves no fraction bits, so the add
+// rounds x to an integer, and taking 1.5 * 2^23 away again is exact.
+inline float RoundEvenSmall(float x) {
+    constexpr float kShift = 12582912.0f;  // 1.5 * 2^23 (no -ffast-math: the sum is not folded)
+    return (x + kShift) - kShift;
+}
+
 // float -> unorm8 as llvmpipe stores a fragment colour: clamp to [0, 1] (NaN -> 0), multiply
 // by 255 in float, round half to even.
 inline uint8_t UnormFromFloatRne(float x) {
     const float low = x > 0.0f ? x : 0.0f;    // NaN fails x > 0 -> 0 (maxss, no branch)
     const float c = low < 1.0f ? low : 1.0f;  // (minss)
-    return static_cast<uint8_t>(std::nearbyint(c * 255.0f));
+    return static_cast<uint8_t>(RoundEvenSmall(c * 255.0f));
 }
 
 // The D3D rule: clamp, then floor(x * 255 + 0.5) with the product rounded to float first.

@@ -3,6 +3,7 @@
 // rational arithmetic for the 8-bit operations, double-precision log2, hand-checked faces.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -113,6 +114,27 @@ TEST(Numeric, UnormConversionTies) {
     EXPECT_EQ(UnormFromFloatRne(INFINITY), 255);
     for (int k = 0; k < 256; ++k)
         EXPECT_EQ(UnormFromFloatRne(FloatFromUnorm8(static_cast<uint8_t>(k))), k);
+}
+
+TEST(Numeric, UnormRneEqualsLibmNearbyint) {
+    // Against libm's nearbyint of the same product: every 97th float of [0, 1] (bit patterns
+    // 0 .. 0x3f800000), and every float within 512 ulps of each k / 255 and (k + 0.5) / 255,
+    // where the product lands on or next to a tie.
+    const auto check = [](float x) {
+        const auto expected = static_cast<uint8_t>(std::nearbyint(x * 255.0f));
+        return UnormFromFloatRne(x) == expected;
+    };
+    for (uint32_t bits = 0; bits <= 0x3f800000u; bits += 97)
+        ASSERT_TRUE(check(BitsFloat(bits))) << "bits " << bits;
+    for (int k = 0; k <= 255; ++k)
+        for (const float centre : {float(k) / 255.0f, (float(k) + 0.5f) / 255.0f}) {
+            const uint32_t c = FloatBits(centre);
+            for (uint32_t b = c > 512 ? c - 512 : 0; b <= std::min(c + 512, 0x3f800000u); ++b)
+                ASSERT_TRUE(check(BitsFloat(b))) << "bits " << b;
+        }
+    EXPECT_EQ(UnormFromFloatRne(std::nextafter(1.0f, 2.0f)), 255);
+    EXPECT_EQ(UnormFromFloatRne(-0.0f), 0);
+    EXPECT_EQ(UnormFromFloatRne(-std::numeric_limits<float>::denorm_min()), 0);
 }
 
 TEST(Blend, OverMatchesMeasuredLlvmpipeFormula) {
