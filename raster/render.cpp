@@ -259,21 +259,26 @@ FragmentTarget ClearedTarget(const PreparedFrame& prepared, const RenderOptions&
                              RenderResult* r) {
     const Frame& frame = prepared.frame();
     const size_t n = static_cast<size_t>(frame.width) * frame.height;
-    // One pass over the picture: a byte fill when the four bytes agree, else 32-bit stores.
     const auto& k = frame.clear;
-    if (k[0] == k[1] && k[1] == k[2] && k[2] == k[3]) {
-        r->image8 = {frame.width, frame.height, std::vector<uint8_t>(4 * n, k[0])};
-    } else {
-        r->image8 = {frame.width, frame.height, std::vector<uint8_t>(4 * n)};
-        uint32_t pattern;
-        std::memcpy(&pattern, k.data(), 4);
-        uint8_t* px = r->image8.rgba.data();
-        for (size_t i = 0; i < n; ++i) std::memcpy(px + 4 * i, &pattern, 4);
+    const bool floats = FloatTarget(frame, options);
+    // The 8-bit picture: one pass, a byte fill when the four bytes agree, else 32-bit stores.
+    if (!floats || options.picture8) {
+        if (k[0] == k[1] && k[1] == k[2] && k[2] == k[3]) {
+            r->image8 = {frame.width, frame.height, std::vector<uint8_t>(4 * n, k[0])};
+        } else {
+            r->image8 = {frame.width, frame.height, std::vector<uint8_t>(4 * n)};
+            uint32_t pattern;
+            std::memcpy(&pattern, k.data(), 4);
+            uint8_t* px = r->image8.rgba.data();
+            for (size_t i = 0; i < n; ++i) std::memcpy(px + 4 * i, &pattern, 4);
+        }
     }
-    if (FloatTarget(frame, options)) {
+    // The float buffer: glClearColor(c / 255.0f).
+    if (floats) {
         r->imageF = {frame.width, frame.height, std::vector<float>(4 * n)};
-        for (size_t i = 0; i < 4 * n; ++i)
-            r->imageF.rgba[i] = static_cast<float>(r->image8.rgba[i]) / 255.0f;
+        const float c[4] = {k[0] / 255.0f, k[1] / 255.0f, k[2] / 255.0f, k[3] / 255.0f};
+        float* px = r->imageF.rgba.data();
+        for (size_t i = 0; i < n; ++i) std::memcpy(px + 4 * i, c, sizeof c);
     }
     return {&prepared,
             options,
@@ -286,7 +291,7 @@ FragmentTarget ClearedTarget(const PreparedFrame& prepared, const RenderOptions&
 
 // The 8-bit picture of a float colour buffer, once drawn.
 void FinishResult(const Frame& frame, const RenderOptions& options, RenderResult* r) {
-    if (!FloatTarget(frame, options)) return;
+    if (!FloatTarget(frame, options) || !options.picture8) return;
     for (size_t i = 0; i < r->imageF.rgba.size(); ++i)
         r->image8.rgba[i] =
             UnormFromFloat(r->imageF.rgba[i], options.rounding == UnormRounding::HalfEven);

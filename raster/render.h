@@ -40,6 +40,9 @@ struct RenderOptions {
     UnormRounding rounding = UnormRounding::HalfEven;
     CubeLod cubeLod = CubeLod::Llvmpipe;
     int threads = 1;
+    // A float colour buffer's 8-bit picture too (RenderResult::image8); false: image8 is left
+    // empty for callers that read only the floats (8-bit colour buffers have image8 always).
+    bool picture8 = true;
 };
 
 // Whether a frame is drawn into a float colour buffer: its own is RGBA32F, or the profile is
@@ -80,8 +83,8 @@ class PreparedFrame {
 };
 
 struct RenderResult {
-    // Always; from a float colour buffer its RNE(clamp(v, 0, 1) * 255) (pemref's view of it,
-    // not a driver's readback).
+    // From a float colour buffer its RNE(clamp(v, 0, 1) * 255) (pemref's view of it, not a
+    // driver's readback), unless RenderOptions::picture8 is false; always from an 8-bit one.
     Image8 image8;
     ImageF imageF;  // a float colour buffer (FloatTarget): its values, unclamped
     // Frame::depth set: the depth buffer after the last pass, width * height values, rows

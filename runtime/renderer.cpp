@@ -199,6 +199,7 @@ class FrameBatch {
         for (const raster::PreparedFrame& p : pf) ptrs.push_back(&p);
         raster::RenderOptions ro = hardware_;
         ro.threads = threads_;
+        ro.picture8 = false;  // float frames are read as floats (AddFrame)
         const std::vector<raster::RenderResult> rr = raster::RenderFrames(ptrs, ro);
         const std::vector<uint8_t> covered =
             rr.empty() ? std::vector<uint8_t>() : CoveredSubpixels(rr[0].depth, kLensDepth);
