@@ -293,6 +293,7 @@ double Rmse8(const infer::EnvMapF& m, const StackedRows& s, const infer::LinearS
     const bool floats = hardware.format == raster::TexelFormat::Rgba32F;
     raster::RenderOptions fo = raster::ProfileNamed(hardware.profile).options;
     fo.threads = threads;
+    fo.picture8 = !floats;  // float frames are read as floats
     double sum = 0.0, weight = 0.0;
     for (const OwnRows& own : s.own) {
         raster::Frame f8 = own.frame;
