@@ -26,7 +26,7 @@ namespace pem::runtime {
 struct MirrorGeometry {
     LensMesh mesh;                // the group's triangles as the scene holds them
     std::vector<ExitRay> exits;   // per vertex: reflected eye ray, weight = Schlick's F
-    std::vector<uint32_t> order;  // front-facing triangles, far to near (DrawOrder)
+    std::vector<uint32_t> order;  // front-facing triangles in mesh order (DrawOrder)
     glm::mat4 viewProjection{1.0f};
 
     PassMesh Pass() const { return MeshOf(mesh); }

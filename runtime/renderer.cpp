@@ -101,7 +101,7 @@ using PreparedCache =
 // GroupGeometry --------------------------------------------------------------------------------
 
 // One lens group's vertices for one frame: their exit rays per term (texgen's input) and the
-// triangles to draw, far to near.
+// triangles to draw (DrawOrder).
 struct GroupGeometry {
     LensPaths paths;        // hybrid, and PEM on the model's vertices
     MirrorGeometry mirror;  // PEM split (mirror-only groups in PEM mode)

@@ -5,8 +5,6 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
-#include <limits>
-#include <numeric>
 #include <stdexcept>
 
 #include "base/parallel.h"
@@ -96,46 +94,24 @@ std::vector<uint32_t> DrawOrder(const PassMesh& mesh, const raster::Camera& came
     const auto& pos = *mesh.positions;
     const auto& nrm = *mesh.normals;
     const auto& tris = *mesh.triangles;
-    // Step 1: per triangle, front-facing or not and its centroid distance (NaN: left out).
-    std::vector<float> depth(tris.size());
+    // Step 1: per triangle, drawn or not: front-facing (some vertex normal toward the eye) and
+    // at a distance that is a number.
+    std::vector<uint8_t> drawn(tris.size());
     ForChunks(tris.size(), threads, [&](size_t first, size_t last) {
         for (size_t i = first; i < last; ++i) {
             const glm::uvec3 t = tris[i];
             bool front = false;
             for (int k = 0; k < 3; ++k) front |= glm::dot(nrm[t[k]], camera.eye - pos[t[k]]) > 0.0f;
             const glm::vec3 c = (pos[t.x] + pos[t.y] + pos[t.z]) / 3.0f;
-            depth[i] =
-                front ? glm::length(c - camera.eye) : std::numeric_limits<float>::quiet_NaN();
+            drawn[i] = front && !std::isnan(glm::length(c - camera.eye)) ? 1 : 0;
         }
     });
-    // Step 2: far to near, ties by index (a stable sort by distance), as (distance, index) keys
-    // sorted in parallel parts and merged.
-    struct Key {
-        float depth;
-        uint32_t index;
-    };
-    std::vector<Key> keys;
-    keys.reserve(tris.size());
+    // Step 2: the front-facing ones in mesh order (neighbours on the mesh are neighbours on
+    // the screen, so a band's colour and depth stay in the caches from triangle to triangle).
+    std::vector<uint32_t> order;
+    order.reserve(tris.size());
     for (uint32_t i = 0; i < tris.size(); ++i)
-        if (!std::isnan(depth[i])) keys.push_back({depth[i], i});
-    auto farFirst = [](const Key& a, const Key& b) {
-        return a.depth > b.depth || (a.depth == b.depth && a.index < b.index);
-    };
-    const int parts = keys.size() < 4096 ? 1 : std::max(1, threads);
-    std::vector<size_t> bound(static_cast<size_t>(parts) + 1);
-    for (int p = 0; p <= parts; ++p) bound[static_cast<size_t>(p)] = keys.size() * p / parts;
-    base::ParallelFor(parts, threads, [&](int p) {
-        std::sort(keys.begin() + static_cast<std::ptrdiff_t>(bound[static_cast<size_t>(p)]),
-                  keys.begin() + static_cast<std::ptrdiff_t>(bound[static_cast<size_t>(p) + 1]),
-                  farFirst);
-    });
-    for (int p = 1; p < parts; ++p)
-        std::inplace_merge(
-            keys.begin(), keys.begin() + static_cast<std::ptrdiff_t>(bound[static_cast<size_t>(p)]),
-            keys.begin() + static_cast<std::ptrdiff_t>(bound[static_cast<size_t>(p) + 1]),
-            farFirst);
-    std::vector<uint32_t> order(keys.size());
-    for (size_t k = 0; k < keys.size(); ++k) order[k] = keys[k].index;
+        if (drawn[i]) order.push_back(i);
     return order;
 }
 

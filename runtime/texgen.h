@@ -15,8 +15,9 @@
 // at infinity). Vertices without a path get weight 0.
 // Passes: clip-space positions from the camera's ViewProjection (near/far from the mesh depth
 // range, depth clamped); back-facing triangles (every vertex normal away from the eye) left out;
-// the rest drawn far to near (centroid distance, ties by index) since raster/ has no depth test
-// (a triangle whose distance is not a number is left out).
+// the rest drawn in mesh order (a triangle whose centroid distance is not a number is left out).
+// Every lens pass tests depth (LayerDepthTest), so the order decides only exact depth ties (the
+// first drawn wins); mesh order keeps consecutive triangles close on the screen.
 // Colour = (F·G, 1) when modulating, white otherwise; alpha stays the texture's coverage.
 // Not here: the vertex rays (lens_paths.h), compositing of layers and terms (renderer.h).
 #pragma once
@@ -63,7 +64,7 @@ std::vector<ExitRay> ReflectionExits(const PassMesh& mesh, const glm::vec3& eye,
 std::vector<glm::vec3> ShellCoords(const std::vector<ExitRay>& exits, const trace::Shell& shell,
                                    const glm::vec3& emOrigin, int threads = 1);
 
-// Step: the visible triangles, far to near.
+// Step: the triangles drawn, in mesh order (front-facing, finite).
 std::vector<uint32_t> DrawOrder(const PassMesh& mesh, const raster::Camera& camera,
                                 int threads = 1);
 
