@@ -275,10 +275,11 @@ FragmentTarget ClearedTarget(const PreparedFrame& prepared, const RenderOptions&
     }
     // The float buffer: glClearColor(c / 255.0f).
     if (floats) {
-        r->imageF = {frame.width, frame.height, std::vector<float>(4 * n)};
+        r->imageF = {frame.width, frame.height, std::vector<float>(4 * n)};  // zeros
         const float c[4] = {k[0] / 255.0f, k[1] / 255.0f, k[2] / 255.0f, k[3] / 255.0f};
         float* px = r->imageF.rgba.data();
-        for (size_t i = 0; i < n; ++i) std::memcpy(px + 4 * i, c, sizeof c);
+        if (k[0] | k[1] | k[2] | k[3])
+            for (size_t i = 0; i < n; ++i) std::memcpy(px + 4 * i, c, sizeof c);
     }
     return {&prepared,
             options,
