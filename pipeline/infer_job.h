@@ -25,8 +25,9 @@
 // (their own vertex paths, texgen and traced layer images, weight × neighbourWeight): the
 // simultaneous solve of hybrid §4.3, so a map also fits what is seen just off its sample.
 // Mirror-only groups also get the PEM paper's split (runtime/mirror_geometry.h): `local` on the
-// ellipsoid shell and `distant` on the box; each fitted as the renderer draws it (`local` only
-// on the polygons off the convex hull, EQUAL after a depth pass of every polygon).
+// local shell (trace/layers.h ChooseLocalShell) and `distant` on the box; each fitted as the
+// renderer draws it (`local` only on the polygons off the convex hull, EQUAL after a depth pass
+// of every polygon).
 // Files per map under outDir (layout.h): <map>.exr (tiled mip-mapped cube, infer/pem_file.h),
 // <map>.png (the 8-bit copy: level l's six faces side by side, levels stacked), <map>.csv (the
 // solve log); --export-system writes per map <dir>/v<vvv>_g<g>_<map>_{K,h,x}.mtx + .json.

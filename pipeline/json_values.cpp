@@ -151,6 +151,7 @@ json LensGroupJson(const runtime::LensGroupEm& g) {
               {"layers", layers}};
     if (g.pem)
         j["pem_local_distant"] = {{"local", ShellJson(g.localShell)},
+                                  {"local_parallax_deg", Number(g.localParallaxDeg)},
                                   {"distant", ShellJson(g.distantShell)},
                                   {"distant_mean_distance", g.distantMeanDistance}};
     return j;
@@ -180,6 +181,9 @@ runtime::LensGroupEm LensGroupFromJson(const json& j, int index) {
         const json& p = j.at("pem_local_distant");
         g.pem = true;
         g.localShell = ShellFromJson(p.at("local"));
+        const double nan = std::numeric_limits<double>::quiet_NaN();  // absent before 12-06
+        g.localParallaxDeg =
+            p.contains("local_parallax_deg") ? NumberOr(p.at("local_parallax_deg"), nan) : nan;
         g.distantShell = ShellFromJson(p.at("distant"));
         g.distantMeanDistance = Finite(p.at("distant_mean_distance"));
     }

@@ -56,6 +56,7 @@ struct Job {
     std::vector<std::vector<glm::vec3>> recordOrigins;   // per group
     std::vector<double> distantSum;                      // per group
     std::vector<size_t> distantCount;
+    std::vector<std::vector<glm::vec3>> localOrigins, localPoints;  // per group
 
     const raster::Camera& Camera(size_t v) const { return manifest.views[v].camera; }
 
@@ -129,6 +130,9 @@ struct Job {
                                 s.recordPoints.end());
         recordOrigins[gi].insert(recordOrigins[gi].end(), s.recordOrigins.begin(),
                                  s.recordOrigins.end());
+        localOrigins[gi].insert(localOrigins[gi].end(), s.localOrigins.begin(),
+                                s.localOrigins.end());
+        localPoints[gi].insert(localPoints[gi].end(), s.localPoints.begin(), s.localPoints.end());
         distantSum[gi] += s.distantDistanceSum;
         distantCount[gi] += s.distantCount;
         manifest.views[v].segmentation += s.counts;
@@ -137,8 +141,9 @@ struct Job {
     // Step 3: a group's layers over all viewpoints' records.
     void Layers(int g) {
         const auto gi = static_cast<size_t>(g);
-        const trace::LayerInput in{records[gi],    recordPoints[gi], options.layers,   0.15,
-                                   distantSum[gi], distantCount[gi], recordOrigins[gi]};
+        const trace::LayerInput in{
+            records[gi],      recordPoints[gi],  options.layers,   0.15,           distantSum[gi],
+            distantCount[gi], recordOrigins[gi], localOrigins[gi], localPoints[gi]};
         groupLayers[gi] = trace::BuildLayers(scene, g, !manifest.groups[gi].glass, in);
         manifest.groups[gi].records = static_cast<int64_t>(records[gi].size());
     }
@@ -178,6 +183,7 @@ void StoreLayers(const trace::Scene& scene, const trace::GroupLayers& l, runtime
     g->pem = l.mirror;
     if (l.mirror) {
         g->localShell = l.localShell;
+        g->localParallaxDeg = l.localParallaxDeg;
         g->distantShell = l.distantShell;
         g->distantMeanDistance = l.distantMeanDistance;
     }
@@ -229,13 +235,15 @@ TraceManifest RunTraceJob(const TraceJobOptions& o) {
     m.bvhSeconds = bvhSeconds;
     const int groups = static_cast<int>(m.groups.size());
     const int views = static_cast<int>(m.views.size());
-    Job job{scene, o, tracer, m, {}, {o, views * (2 + 2 * groups)}, {}, {}, {}, {}, {}};
+    Job job{scene, o, tracer, m, {}, {o, views * (2 + 2 * groups)}, {}, {}, {}, {}, {}, {}, {}};
     job.groupLayers.resize(static_cast<size_t>(groups));
     job.records.resize(static_cast<size_t>(groups));
     job.recordPoints.resize(static_cast<size_t>(groups));
     job.recordOrigins.resize(static_cast<size_t>(groups));
     job.distantSum.assign(static_cast<size_t>(groups), 0.0);
     job.distantCount.assign(static_cast<size_t>(groups), 0);
+    job.localOrigins.resize(static_cast<size_t>(groups));
+    job.localPoints.resize(static_cast<size_t>(groups));
     for (int g = 0; g < groups; ++g)
         job.groupLayers[static_cast<size_t>(g)].emOrigin = trace::GroupEmOrigin(scene, g);
     for (size_t v = 0; v < m.views.size(); ++v) {

@@ -44,6 +44,7 @@ struct LensGroupEm {
     bool lbgConverged = false;
     bool pem = false;  // mirror-only: the local/distant shells below are set
     trace::Shell localShell, distantShell;
+    double localParallaxDeg = 0.0;  // the local shell's parallax over the self hits (layers.h)
     double distantMeanDistance = 0.0;
 
     int Terms() const { return glass ? 2 : 1; }

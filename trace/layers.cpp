@@ -151,14 +151,48 @@ std::vector<glm::dvec3> GroupVertices(const Scene& scene, int group) {
 void SetMirrorShells(const Scene& scene, int group, const LayerInput& in, GroupLayers& out) {
     out.mirror = true;
     const glm::dvec3 origin(out.emOrigin);
-    const std::vector<glm::dvec3> vertices = GroupVertices(scene, group);
-    out.localShell = FitEllipsoid(vertices, origin);
+    std::vector<RayHit> selfHits;  // thinned to kParallaxRecords
+    const size_t n = std::min(in.localOrigins.size(), in.localPoints.size());
+    const size_t kept = std::min(n, kParallaxRecords);
+    for (size_t k = 0; k < kept; ++k)
+        selfHits.push_back(
+            {glm::dvec3(in.localOrigins[k * n / kept]), glm::dvec3(in.localPoints[k * n / kept])});
+    const LocalShellChoice local = ChooseLocalShell(GroupVertices(scene, group), selfHits, origin);
+    out.localShell = local.shell;
+    out.localParallaxDeg = local.parallaxDeg;
     out.distantMeanDistance =
         in.distantCount ? in.distantDistanceSum / static_cast<double>(in.distantCount) : 0.0;
     out.distantShell = BoxAround(origin, out.distantMeanDistance, FloorUnder(scene, group));
 }
 
 }  // namespace
+
+LocalShellChoice ChooseLocalShell(std::span<const glm::dvec3> vertices,
+                                  std::span<const RayHit> selfHits, const glm::dvec3& emOrigin) {
+    // Step 1: the candidates.
+    std::vector<Shell> candidates{FitEllipsoid(vertices, emOrigin)};
+    if (selfHits.size() >= 3) {
+        std::vector<glm::dvec3> points;
+        std::vector<double> radii;
+        for (const RayHit& h : selfHits) {
+            points.push_back(h.point);
+            radii.push_back(glm::length(h.point - emOrigin));
+        }
+        candidates.emplace_back(FitEllipsoid(points, emOrigin));
+        candidates.emplace_back(FitBox(points, std::nullopt));
+        std::sort(radii.begin(), radii.end());
+        for (size_t q = 1; q <= 9; ++q)
+            candidates.emplace_back(SphereShell{emOrigin, radii[q * radii.size() / 10]});
+    }
+    if (selfHits.empty()) return {candidates[0], std::numeric_limits<double>::quiet_NaN()};
+    // Step 2: the least parallax (the first of equals).
+    LocalShellChoice best{candidates[0], std::numeric_limits<double>::infinity()};
+    for (const Shell& c : candidates) {
+        const double p = ShellParallax(c, selfHits, emOrigin);
+        if (p < best.parallaxDeg) best = {c, p};
+    }
+    return best;
+}
 
 glm::vec3 GroupEmOrigin(const Scene& scene, int group) {
     std::vector<glm::vec3> positions;

@@ -11,11 +11,11 @@
 // sparsely occupied layer (fewer than `sparseOccupancy` of the 6·16·16 cube-direction cells
 // hold a record) a quad impostor; boxes and cylinders stand on the floor when the group rests on
 // the lowest geometry of the scene (the PEM paper's box for objects on a surface). Without ray
-// origins: the sphere, or the quad for a sparse layer. Mirror-only groups also
-// get the PEM split's shells: an ellipsoid for the local layer (FitEllipsoid over the group's
-// vertices, minimum volume, centred at the EM origin) and a box for the distant layer (half size
-// = mean distance of the distant hits, bottom on the floor when the group rests on the lowest
-// geometry of the scene).
+// origins: the sphere, or the quad for a sparse layer. Mirror-only groups also get the PEM
+// split's shells: for the local layer the candidate with the least parallax over the group's self
+// hits (ChooseLocalShell; the PEM paper's ellipsoid over the group's vertices among them), and a
+// box for the distant layer (half size = mean distance of the distant hits, bottom on the floor
+// when the group rests on the lowest geometry of the scene).
 // Layer images (per term, per layer, RGBA premultiplied, box-filtered like segment.h): for each
 // sample's exit ray, every front-facing hit outside the group in order of distance; the first hit
 // in each layer gives that layer its colour (the hit's radiance seen along the exit ray) and
@@ -54,7 +54,8 @@ struct GroupLayers {
     std::vector<LayerShell> shells;  // per layer
     std::vector<int> objectLayer;    // per scene object: its layer, -1 = no records
     bool mirror = false;             // the PEM shells below are set
-    EllipsoidShell localShell;
+    Shell localShell;
+    double localParallaxDeg = 0.0;  // its parallax over the self hits (NaN: none recorded)
     BoxShell distantShell;
     double distantMeanDistance = 0.0;
 };
@@ -69,6 +70,8 @@ struct LayerInput {
     double distantDistanceSum = 0.0;  // mirror-only groups (segment.h)
     size_t distantCount = 0;
     std::span<const glm::vec3> origins;  // per record: its exit ray's origin (may be empty)
+    // Mirror-only groups: the self hits (segment.h localOrigins, localPoints), may be empty.
+    std::span<const glm::vec3> localOrigins, localPoints;
 };
 
 GroupLayers BuildLayers(const Scene& scene, int group, bool mirror, const LayerInput& input);
@@ -81,6 +84,18 @@ struct RayHit {
 // where each ray meets the shell and the scene point it met (a miss counts 90°). Zero for a
 // shell through every point, and for rays that leave from the EM origin itself.
 double ShellParallax(const Shell& shell, std::span<const RayHit> hits, const glm::dvec3& emOrigin);
+
+// The PEM split's local shell: the candidate with the least parallax over the group's self hits
+// (each a first reflected ray that meets the group again: its origin, the point it met): the
+// minimum-volume ellipsoid over the group's vertices (first, so it wins ties; the choice without
+// self hits, parallax NaN), the ellipsoid fit and the box around the hit points, and spheres at
+// the deciles of their distance from the EM origin.
+struct LocalShellChoice {
+    Shell shell;
+    double parallaxDeg = 0.0;
+};
+LocalShellChoice ChooseLocalShell(std::span<const glm::dvec3> vertices,
+                                  std::span<const RayHit> selfHits, const glm::dvec3& emOrigin);
 
 // The layer of a hit on `object` at `distance` from the EM origin.
 int LayerOf(const GroupLayers& layers, int object, double distance);

@@ -50,7 +50,7 @@ FirstBounce BounceOf(const Tracer& tracer, const Ray& ray, const Hit& hit) {
 // Accumulators of one image row (merged in row order by SegmentGroup).
 struct RowRecords {
     std::vector<HitRecord> records;
-    std::vector<glm::vec3> points, origins;
+    std::vector<glm::vec3> points, origins, localOrigins, localPoints;
     double distantSum = 0.0;
     size_t distantCount = 0;
     RayCounts counts;
@@ -75,7 +75,7 @@ struct Segmenter {
     }
 
     // PEM split along the first reflected ray (mirror-only groups) of the sample in `cell`.
-    void MirrorSplit(const Ray& ray, const Hit& hit, int x, int y, glm::ivec2 cell,
+    void MirrorSplit(const Ray& ray, const Hit& hit, int x, int y, int s, glm::ivec2 cell,
                      RowRecords& row) const {
         const FirstBounce fb = BounceOf(tracer, ray, hit);
         const int budget = tracer.options().fullTreeDepth - 1;
@@ -84,6 +84,10 @@ struct Segmenter {
         if (local)
             out.localSamples.Add(cell.x, cell.y,
                                  tracer.HitRadiance(fb.ray, h1, budget, 1.0, row.counts), 1.0f);
+        if (local && s == 0) {
+            row.localOrigins.push_back(fb.ray.origin);
+            row.localPoints.push_back(fb.ray.origin + h1.t * fb.ray.dir);
+        }
         Hit d = h1;
         if (local) {
             d = Hit{};
@@ -124,7 +128,7 @@ struct Segmenter {
                 const uint64_t pixel = static_cast<uint64_t>(y) * camera.width + x;
                 if (s == 0) Record(term.exit, 2 * pixel + static_cast<uint64_t>(t), row);
             }
-            if (out.mirror) MirrorSplit(ray, hit, x, y, cell, row);
+            if (out.mirror) MirrorSplit(ray, hit, x, y, s, cell, row);
         }
         for (int t = 0; t < out.terms; ++t)
             out.confidence[t].At(x, y)[0] = static_cast<float>(PixelConfidence(dirs[t]));
@@ -193,6 +197,9 @@ GroupSegmentation SegmentGroup(const Tracer& tracer, const raster::Camera& camer
         out.records.insert(out.records.end(), r.records.begin(), r.records.end());
         out.recordPoints.insert(out.recordPoints.end(), r.points.begin(), r.points.end());
         out.recordOrigins.insert(out.recordOrigins.end(), r.origins.begin(), r.origins.end());
+        out.localOrigins.insert(out.localOrigins.end(), r.localOrigins.begin(),
+                                r.localOrigins.end());
+        out.localPoints.insert(out.localPoints.end(), r.localPoints.begin(), r.localPoints.end());
         out.distantDistanceSum += r.distantSum;
         out.distantCount += r.distantCount;
         out.counts += r.counts;

@@ -20,7 +20,8 @@
 //  bounce's Schlick F). Then (αL·L + (1−αL)·D)·F1 is the reference on covered pixels.
 // Records (for cluster.h): for the FIRST sample of each pixel and each term with an exit ray,
 // every front-facing hit (EmbreeScene::IntersectAll; equal-t repeats merged) on objects outside
-// the group, with distance from the group's EM origin; rayId = 2·pixel + τ.
+// the group, with distance from the group's EM origin; rayId = 2·pixel + τ. For mirror-only groups
+// also the first sample's self hits (localOrigins, localPoints).
 // Not here: clustering and layer images (layers.h).
 #pragma once
 
@@ -48,6 +49,9 @@ struct GroupSegmentation {
     std::vector<glm::vec3> recordOrigins;  // the exit ray's origin of each record
     double distantDistanceSum = 0.0;       // distance of distant hits from the EM origin
     size_t distantCount = 0;
+    // Mirror-only groups, the FIRST sample of each pixel whose first reflected ray hits the group
+    // again: that ray's origin and the point it met (the local layer's shell choice, layers.h).
+    std::vector<glm::vec3> localOrigins, localPoints;
     RayCounts counts;
 };
 

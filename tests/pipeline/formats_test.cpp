@@ -62,6 +62,7 @@ runtime::LensGroupEm SomeGroup(int index) {
     if (!g.glass) {
         g.pem = true;
         g.localShell = trace::EllipsoidShell{{0.0, 0.5, 0.0}, {0.3, 0.4, 0.5}};
+        g.localParallaxDeg = 29.75;
         g.distantShell = trace::BoxShell{{-5.0, -0.5, -5.0}, {5.0, 4.0, 5.0}};
         g.distantMeanDistance = 3.75;
     }
@@ -88,6 +89,7 @@ void ExpectSameGroup(const runtime::LensGroupEm& a, const runtime::LensGroupEm& 
     }
     EXPECT_EQ(a.pem, b.pem);
     EXPECT_TRUE(a.localShell == b.localShell);
+    EXPECT_EQ(a.localParallaxDeg, b.localParallaxDeg);
     EXPECT_TRUE(a.distantShell == b.distantShell);
 }
 

@@ -254,6 +254,11 @@ if any("local" in l["what"] for l in t["left_out"]): fail("PEM teapot: local lay
 if not os.path.getsize(f"{w}/t/pem.png"): fail("PEM teapot: no PEM frame")
 tr = json.load(open(f"{w}/t/report.json"))
 if len(tr["results"]) != 27: fail("PEM teapot: report incomplete")
+# Layered PEM ahead of single-layer PEM everywhere, 10° above the sampled circle too (with the
+# vertex ellipsoid as local shell the local layer's parallax made it 0.5 dB worse there).
+for pos in ["on circle", "between samples", "10° above"]:
+    err = {x["method"]: x["float"]["rmse"] for x in tr["results"] if x["position"] == pos}
+    if not err["layered PEM"] < err["single-layer PEM"]: fail(f"PEM teapot, {pos}: layered {err}")
 print("PASS: 4 methods rendered with statistics, 6 viewer frames, 27 report results; "
       f"10° above RMSE static {static:.4f} > layered PEM {above[('layered PEM', '')]:.4f}, "
       f"hybrid t=5 {above[('hybrid', 't=5')]:.4f}; mirror sphere left out: {decisions}")

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
-// layers_test.cpp — the parallax that chooses a layer's shell, against values worked out by hand.
+// layers_test.cpp — the parallax that chooses a layer's shell, against values worked out by hand,
+// and the PEM local shell it chooses.
 #include "trace/layers.h"
 
 #include <gtest/gtest.h>
@@ -42,6 +43,43 @@ TEST(ShellParallax, CylinderCapIsTheFloor) {
     }
     EXPECT_NEAR(ShellParallax(CylinderShell{{0.0, 0.0}, 4.0, 0.0, 3.0}, hits, c), 0.0, 1e-4);
     EXPECT_GT(ShellParallax(SphereShell{c, 1.0}, hits, c), 5.0);
+}
+
+// Self hits on a sphere of radius 0.7 about the EM origin, from origins inside it (a reflector
+// seeing a surface that wraps around it): the chosen shell passes through every hit point,
+// although the vertex ellipsoid (the vertices span a box twice as large) does not.
+TEST(ChooseLocalShell, PassesThroughSelfHitsOnASphere) {
+    const glm::dvec3 c(0.0, 0.5, 0.0);
+    std::vector<glm::dvec3> vertices;
+    for (int k = 0; k < 8; ++k)
+        vertices.push_back(c + glm::dvec3(k & 1 ? 1.4 : -1.4, k & 2 ? 0.7 : -0.7, k & 4 ? 1 : -1));
+    std::vector<RayHit> hits;
+    for (int k = 0; k < 40; ++k) {
+        const double a = 0.37 * k, b = 0.11 * k - 2.0;
+        const glm::dvec3 o = c + 0.3 * glm::dvec3(std::cos(a), 0.5, std::sin(a));
+        const glm::dvec3 u(std::cos(b) * std::cos(a + 2.0), std::sin(b),
+                           std::cos(b) * std::sin(a + 2.0));
+        hits.push_back({o, c + 0.7 * u});
+    }
+    const LocalShellChoice local = ChooseLocalShell(vertices, hits, c);
+    EXPECT_LT(local.parallaxDeg, 1e-3);
+    EXPECT_GT(ShellParallax(FitEllipsoid(vertices, c), hits, c), 1.0);  // not vacuous
+    for (const RayHit& h : hits) {
+        const std::optional<ShellHit> s = Intersect(
+            local.shell, Ray{glm::vec3(h.origin), glm::vec3(glm::normalize(h.point - h.origin))});
+        ASSERT_TRUE(s.has_value());
+        EXPECT_NEAR(glm::length(s->point - h.point), 0.0, 1e-5);
+    }
+}
+
+// Without self hits (a convex reflector), the PEM paper's ellipsoid over the vertices.
+TEST(ChooseLocalShell, WithoutSelfHitsTheVertexEllipsoid) {
+    const glm::dvec3 c(0.0, 0.5, 0.0);
+    const std::vector<glm::dvec3> vertices{{1, 0.5, 0}, {-1, 0.5, 0}, {0, 1, 0},
+                                           {0, 0, 0},   {0, 0.5, 2},  {0, 0.5, -2}};
+    const LocalShellChoice local = ChooseLocalShell(vertices, {}, c);
+    EXPECT_TRUE(local.shell == Shell{FitEllipsoid(vertices, c)});
+    EXPECT_TRUE(std::isnan(local.parallaxDeg));
 }
 
 }  // namespace

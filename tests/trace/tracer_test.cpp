@@ -242,8 +242,15 @@ TEST(Tracer, SegmentedImagesAndLayerAlphaInRange) {
         if (s.mirror) ExpectInRange(s.local, 3, 0.0f, 1.0f, "local alpha");
         ASSERT_FALSE(s.records.empty());
         ASSERT_EQ(s.recordOrigins.size(), s.records.size());
-        LayerInput in{s.records,      s.recordPoints, 2, 0.15, s.distantDistanceSum,
-                      s.distantCount, s.recordOrigins};
+        LayerInput in{s.records,
+                      s.recordPoints,
+                      2,
+                      0.15,
+                      s.distantDistanceSum,
+                      s.distantCount,
+                      s.recordOrigins,
+                      s.localOrigins,
+                      s.localPoints};
         const GroupLayers layers = BuildLayers(scene, g, s.mirror, in);
         ASSERT_FALSE(layers.clustering.layers.empty());
         for (const LayerShell& sh : layers.shells) {  // the least parallax of the tried shells
@@ -298,9 +305,31 @@ TEST(Tracer, SampleImagesAreTheSamplesOneByOne) {
         if (s.mirror) {
             EXPECT_EQ(BoxFilter(s.localSamples, k), s.local);
             EXPECT_EQ(BoxFilter(s.distantSamples, k), s.distant);
+            // The self hits: one per pixel whose first sample's reflected ray meets the group
+            // again (local alpha 1 in that sample's cell), each a point of the group.
+            size_t selfHits = 0;
+            for (int y = 0; y < cam.height; ++y)
+                for (int x = 0; x < cam.width; ++x) {
+                    const glm::ivec2 cell = SampleCell(x, y, k, 0);
+                    selfHits += s.localSamples.At(cell.x, cell.y)[3] == 1.0f;
+                }
+            ASSERT_EQ(s.localOrigins.size(), selfHits);
+            ASSERT_EQ(s.localPoints.size(), selfHits);
+            EXPECT_GT(selfHits, 0u);  // the cup sees itself
+            const Bounds& box = scene.lensGroups[static_cast<size_t>(g)].bounds;
+            for (const glm::vec3& p : s.localPoints)
+                ASSERT_TRUE(glm::all(glm::greaterThanEqual(p, box.lo - 1e-4f)) &&
+                            glm::all(glm::lessThanEqual(p, box.hi + 1e-4f)));
         }
-        LayerInput in{s.records,      s.recordPoints, 2, 0.15, s.distantDistanceSum,
-                      s.distantCount, s.recordOrigins};
+        LayerInput in{s.records,
+                      s.recordPoints,
+                      2,
+                      0.15,
+                      s.distantDistanceSum,
+                      s.distantCount,
+                      s.recordOrigins,
+                      s.localOrigins,
+                      s.localPoints};
         const LayerImages li = RenderLayers(tracer, cam, k, BuildLayers(scene, g, s.mirror, in), 2);
         for (int t = 0; t < s.terms; ++t)
             for (size_t l = 0; l < li.term[t].size(); ++l) {
