@@ -226,6 +226,19 @@ void ExpectInRange(const FloatImage& img, int channel, float lo, float hi, const
         }
 }
 
+// A segmentation's records as BuildLayers takes them (two layers, as pemref trace by default).
+LayerInput LayerInputOf(const GroupSegmentation& s) {
+    return {s.records,
+            s.recordPoints,
+            2,
+            0.15,
+            s.distantDistanceSum,
+            s.distantCount,
+            s.recordOrigins,
+            s.localOrigins,
+            s.localPoints};
+}
+
 TEST(Tracer, SegmentedImagesAndLayerAlphaInRange) {
     const TracedScene traced(kHybrid);
     const auto& [scene, device, embree, tracer] = traced;
@@ -242,15 +255,7 @@ TEST(Tracer, SegmentedImagesAndLayerAlphaInRange) {
         if (s.mirror) ExpectInRange(s.local, 3, 0.0f, 1.0f, "local alpha");
         ASSERT_FALSE(s.records.empty());
         ASSERT_EQ(s.recordOrigins.size(), s.records.size());
-        LayerInput in{s.records,
-                      s.recordPoints,
-                      2,
-                      0.15,
-                      s.distantDistanceSum,
-                      s.distantCount,
-                      s.recordOrigins,
-                      s.localOrigins,
-                      s.localPoints};
+        const LayerInput in = LayerInputOf(s);
         const GroupLayers layers = BuildLayers(scene, g, s.mirror, in);
         ASSERT_FALSE(layers.clustering.layers.empty());
         for (const LayerShell& sh : layers.shells) {  // the least parallax of the tried shells
@@ -321,15 +326,7 @@ TEST(Tracer, SampleImagesAreTheSamplesOneByOne) {
                 ASSERT_TRUE(glm::all(glm::greaterThanEqual(p, box.lo - 1e-4f)) &&
                             glm::all(glm::lessThanEqual(p, box.hi + 1e-4f)));
         }
-        LayerInput in{s.records,
-                      s.recordPoints,
-                      2,
-                      0.15,
-                      s.distantDistanceSum,
-                      s.distantCount,
-                      s.recordOrigins,
-                      s.localOrigins,
-                      s.localPoints};
+        const LayerInput in = LayerInputOf(s);
         const LayerImages li = RenderLayers(tracer, cam, k, BuildLayers(scene, g, s.mirror, in), 2);
         for (int t = 0; t < s.terms; ++t)
             for (size_t l = 0; l < li.term[t].size(); ++l) {
