@@ -181,7 +181,7 @@ runtime::LensGroupEm LensGroupFromJson(const json& j, int index) {
         const json& p = j.at("pem_local_distant");
         g.pem = true;
         g.localShell = ShellFromJson(p.at("local"));
-        const double nan = std::numeric_limits<double>::quiet_NaN();  // absent before 12-06
+        const double nan = std::numeric_limits<double>::quiet_NaN();  // absent: older traces
         g.localParallaxDeg =
             p.contains("local_parallax_deg") ? NumberOr(p.at("local_parallax_deg"), nan) : nan;
         g.distantShell = ShellFromJson(p.at("distant"));
