@@ -49,11 +49,12 @@ json BakeSettings(const BakeJobOptions& o) {
         {"lod-bias", hw.lodBias},
         {"radiance-scale", hw.radianceScale}};
     // Settings added later, recorded only when not their default (older bake.json files stay
-    // valid): the maps' format and the tessellation t.
+    // valid): the maps' format, the tessellation t and the further t the maps also fit.
     if (hw.format != raster::TexelFormat::Rgba8)
         for (const auto& [name, format] : raster::kTexelFormatNames)
             if (format == hw.format) s["map-format"] = std::string(name);
     if (o.infer.tessT != runtime::kDefaultTessT) s["t"] = o.infer.tessT;
+    if (!o.infer.alsoTessT.empty()) s["also-t"] = o.infer.alsoTessT;
     return s;
 }
 
@@ -159,6 +160,7 @@ size_t WriteOutputs(const BakeJobOptions& o, const TraceManifest& trace, int n) 
     PemManifest m = PemManifestFor(trace, rec.dir, o.infer.res, o.infer.hdr, {}, o.infer.hardware,
                                    std::max(o.infer.res, o.infer.maxRes), o.infer.parameterization);
     m.tessT = o.infer.tessT;
+    m.alsoTessT = o.infer.alsoTessT;
     WritePemManifest(m);
     return rec.maps.size();
 }
@@ -177,6 +179,7 @@ BakeJobOptions DemoBakeOptions() {
     o.infer.res = 256;
     o.infer.maxRes = 512;
     o.infer.tessT = 1.0;
+    o.infer.alsoTessT = {runtime::kDefaultTessT};
     o.infer.hardware.format = raster::TexelFormat::Rgba32F;
     o.infer.weights.smooth = DefaultSmooth(o.infer.hardware.format);
     return o;

@@ -49,8 +49,9 @@ BakeJobOptions DefaultBakeOptions();
 // The demo's bake (`pemref demo`): the defaults with maps as close to the traced frame as the
 // hardware draws them — float maps (highlights above white, negative texels; RGBA32F), each
 // map's face size from its test rendering between 256 and 512 (PEM §4), tessellation t = 1
-// subpixel (hybrid §5), the float maps' smoothing (DefaultSmooth) — about four times the
-// inference time of the defaults.
+// subpixel (hybrid §5) and also the renderers' default t (alsoTessT: fitted at t = 1 alone, the
+// hybrid at t = 5 lost 5 dB at the samples of the PEM teapot), the float maps' smoothing
+// (DefaultSmooth) — about four times the inference time of the defaults.
 BakeJobOptions DemoBakeOptions();
 
 BakeJobResult RunBakeJob(const BakeJobOptions& options);

@@ -438,6 +438,7 @@ struct ViewGeometry {
     std::vector<uint32_t> order;
     glm::mat4 vp{1.0f};
     double weight = 1.0;
+    bool own = false;          // the sample's view at the maps' t (MapInput::own)
     trace::FloatImage cov[2];  // per term: b_τ's samples (alpha = coverage)
     trace::FloatImage frame;   // the traced two-term frame (what the display shows)
     trace::FloatImage fg[2];   // per term: F·G (pixels)
@@ -476,14 +477,14 @@ struct Context {
 };
 
 ViewGeometry SampleGeometry(const Context& c, int u, const runtime::LensGroupEm& g, double weight,
-                            SampleReport* sample) {
+                            SampleReport* sample, double tessT) {
     const int group = g.index, terms = g.Terms();
     const auto t0 = Clock::now();
     ViewGeometry vg;
     vg.view = u;
     vg.camera = c.cameras[static_cast<size_t>(u)];
     runtime::LensPathsOptions lo;
-    lo.tess.maxEdgeSubpixels = c.opt.tessT;
+    lo.tess.maxEdgeSubpixels = tessT;
     lo.supersampling = c.tm.spp;
     lo.threads = c.opt.threads;
     vg.lp = runtime::TraceLensPaths(c.tracer, c.embree, vg.camera, group, lo);
@@ -503,15 +504,19 @@ ViewGeometry SampleGeometry(const Context& c, int u, const runtime::LensGroupEm&
     return vg;
 }
 
-// The sample's own view first, then its neighbours in the simultaneous solve.
+// The sample's own view first (at t, counted in rmse_8bit), the same view at each further t, then
+// its neighbours in the simultaneous solve.
 std::vector<ViewGeometry> SolveGeometry(const Context& c, int v, const runtime::LensGroupEm& g,
                                         SampleReport* sample) {
     std::vector<ViewGeometry> geo;
-    geo.push_back(SampleGeometry(c, v, g, 1.0, sample));
+    geo.push_back(SampleGeometry(c, v, g, 1.0, sample, c.opt.tessT));
+    geo[0].own = true;
     sample->triangles += geo[0].lp.tess.triangles.size();
+    for (double t : c.opt.alsoTessT)  // the same view drawn at another t: not its own rows
+        if (t != c.opt.tessT) geo.push_back(SampleGeometry(c, v, g, kAlsoTessWeight, sample, t));
     for (int u = v - c.opt.neighbours; u <= v + c.opt.neighbours; ++u)
         if (u != v && u >= 0 && u < static_cast<int>(c.cameras.size()))
-            geo.push_back(SampleGeometry(c, u, g, c.opt.neighbourWeight, sample));
+            geo.push_back(SampleGeometry(c, u, g, c.opt.neighbourWeight, sample, c.opt.tessT));
     return geo;
 }
 
@@ -529,7 +534,7 @@ runtime::PassOptions DepthTested(const InferJobOptions& opt, const raster::Camer
 
 // Observations of a map on `shell`: per term and view, images[term][view] as the target.
 std::vector<MapInput> Observations(const InferJobOptions& opt, const std::vector<ViewGeometry>& geo,
-                                   int terms, int v,
+                                   int terms,
                                    const std::vector<std::vector<const trace::FloatImage*>>& images,
                                    const trace::Shell& shell, const glm::vec3& emOrigin) {
     std::vector<MapInput> inputs;
@@ -543,7 +548,7 @@ std::vector<MapInput> Observations(const InferJobOptions& opt, const std::vector
                         {},
                         {},
                         vg.weight,
-                        vg.view == v};
+                        vg.own};
             in.passes = runtime::LayerPass(runtime::MeshOf(vg.lp.tess), vg.order,
                                            runtime::ShellCoords(vg.exits[term], shell, emOrigin),
                                            vg.exits[term], vg.vp, DepthTested(opt, vg.camera));
@@ -586,8 +591,8 @@ void SolveLayerMaps(Context& c, int v, const runtime::LensGroupEm& g,
                 images[static_cast<size_t>(t)].push_back(&owned.emplace_back(ReadGroupSamples(
                     c.tm, vg.view, g.index, LayerImageName(static_cast<int>(l), t))));
         const runtime::DirectImages* direct = c.Direct(g);
-        Solve(c, Observations(c.opt, geo, g.Terms(), v, images, g.layers[l].shell, g.emOrigin),
-              odir, Report(v, g, static_cast<int>(l), term, LayerMapName(static_cast<int>(l))),
+        Solve(c, Observations(c.opt, geo, g.Terms(), images, g.layers[l].shell, g.emOrigin), odir,
+              Report(v, g, static_cast<int>(l), term, LayerMapName(static_cast<int>(l))),
               direct ? &direct->levels[l] : nullptr);
     }
     if (!c.opt.single) return;
@@ -595,8 +600,7 @@ void SolveLayerMaps(Context& c, int v, const runtime::LensGroupEm& g,
     for (int t = 0; t < g.Terms(); ++t)
         for (const ViewGeometry& vg : geo) images[static_cast<size_t>(t)].push_back(&vg.cov[t]);
     const runtime::DirectImages* direct = c.Direct(g);
-    Solve(c,
-          Observations(c.opt, geo, g.Terms(), v, images, runtime::SingleLayerShell(g), g.emOrigin),
+    Solve(c, Observations(c.opt, geo, g.Terms(), images, runtime::SingleLayerShell(g), g.emOrigin),
           odir, Report(v, g, 0, term, "single"), direct ? &direct->levels.back() : nullptr);
 }
 
@@ -682,6 +686,9 @@ InferJobResult RunInferJob(const InferJobOptions& opt) {
         (opt.maxRes < opt.res || (opt.maxRes & (opt.maxRes - 1)) != 0 || opt.maxRes > 4096))
         throw base::InputError("--max-res " + std::to_string(opt.maxRes),
                                "expected a power of two in [--res, 4096]");
+    for (double t : opt.alsoTessT)
+        if (!(t >= 0.25 && t <= 1e4))
+            throw base::InputError("--also-t " + std::to_string(t), "expected t in [0.25, 1e4]");
     InferJobResult result;
     result.trace = ReadTraceManifest(opt.traceDir);
     const TraceManifest& tm = result.trace;
@@ -722,6 +729,7 @@ void WriteInferOutputs(const InferJobOptions& o, const InferJobResult& r) {
     PemManifest m = PemManifestFor(r.trace, o.outDir, o.res, o.hdr, o.views, o.hardware,
                                    std::max(o.res, o.maxRes), o.parameterization);
     m.tessT = o.tessT;
+    m.alsoTessT = o.alsoTessT;
     WritePemManifest(m);
 }
 

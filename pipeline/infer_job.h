@@ -21,6 +21,9 @@
 // With maxRes > res, each map's face size comes from a test rendering (PEM §4 "EM Resolution"):
 // its sample's passes drawn at face size maxRes without LOD bias; the size whose level 0 is the
 // finest level 10 % of the covered subpixels read, within [res, maxRes].
+// With `alsoTessT`, the layer maps' systems also hold the rows of the sample's view tessellated at
+// each further t (the renderers' interactive t beside a finer bake t): maps that the hardware
+// draws close to the traced frame at either.
 // With `neighbours` = k, the layer maps' systems also hold the rows of the k samples on each side
 // (their own vertex paths, texgen and traced layer images, weight × neighbourWeight): the
 // simultaneous solve of hybrid §4.3, so a map also fits what is seen just off its sample.
@@ -75,6 +78,13 @@ infer::SolveOptions DefaultSolveOptions();
 // loses 0.3–0.75 dB (teapot 32.38 → 31.63 at sample 0).
 double DefaultSmooth(raster::TexelFormat format);
 
+// The weight of the rows of a further tessellation (InferJobOptions::alsoTessT), the maps' own
+// t's being 1. Scene (a) at the demo's settings with --also-t 5, the glass teapot's hybrid at
+// the three samples against the traced two-term frame (the outside check): at 1 the frames at
+// t = 1 lose 0.6-1.1 dB to maps fitted at t = 1 alone, 0.3-0.8 at 0.5 (which gives up 0.4-0.6
+// of the gain at t = 5: 25.0-25.3 dB alone, 28.5-29.9 at 1, 28.0-29.3 at 0.5).
+inline constexpr double kAlsoTessWeight = 0.5;
+
 struct InferJobOptions {
     std::string traceDir, outDir, exportDir;
     int res = kDefaultMapResolution;
@@ -89,8 +99,13 @@ struct InferJobOptions {
     runtime::Parameterization parameterization = runtime::Parameterization::Cube;
     bool hdr = false;                       // float radiance, bounds [0, inf)
     double tessT = runtime::kDefaultTessT;  // tessellation t in subpixels (1 / spp pixels)
-    std::vector<int> views;                 // empty: all
-    bool single = false;                    // also the single-layer map (`single`, both terms)
+    // Further tessellations of the sample the layer maps also fit, each with the rows of its
+    // own texgen pass at weight kAlsoTessWeight (t = tessT is skipped): maps fitted at one t
+    // alone are tuned to its vertices and show speckles where a coarser t interpolates other
+    // lookups.
+    std::vector<double> alsoTessT;
+    std::vector<int> views;        // empty: all
+    bool single = false;           // also the single-layer map (`single`, both terms)
     int neighbours = 0;            // samples on each side in the simultaneous solve (hybrid §4.3)
     double neighbourWeight = 0.5;  // their rows' weight factor
     bool direct = false;           // also solve with the direct oracle (when it fits)

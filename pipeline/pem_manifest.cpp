@@ -42,6 +42,8 @@ json ManifestJson(const PemManifest& m) {
               {"views", views},
               {"inferred_views", m.inferred},
               {"lens_groups", groups}};
+    // Only when given (absent: none, as directories written before the key).
+    if (!m.alsoTessT.empty()) j["also_t"] = m.alsoTessT;
     // RGBA32F maps only (absent: RGBA8, as directories written before the key).
     if (m.hardware.format != raster::TexelFormat::Rgba8)
         for (const auto& [name, format] : raster::kTexelFormatNames)
@@ -107,6 +109,9 @@ PemManifest ManifestFromJson(const json& j) {
     m.hdr = j.at("hdr").get<bool>();
     m.tessT = j.value("t", runtime::kDefaultTessT);  // absent in older directories
     if (!(m.tessT >= 0.25 && m.tessT <= 1e4)) throw std::runtime_error("t must lie in [0.25, 1e4]");
+    if (j.contains("also_t")) m.alsoTessT = j.at("also_t").get<std::vector<double>>();
+    for (double t : m.alsoTessT)
+        if (!(t >= 0.25 && t <= 1e4)) throw std::runtime_error("also_t must lie in [0.25, 1e4]");
     for (const json& v : j.at("views")) m.views.push_back(CameraFromJson(v));
     m.inferred = IntsAt<int>(j, "inferred_views");
     int index = 0;

@@ -199,6 +199,15 @@ TEST(PemManifest, RoundTripsFromATrace) {
     EXPECT_EQ(ResolveScene(r.dir, r.scene, r.sceneGiven),
               fs::path(kMirrorSphere).lexically_normal().string());
     ExpectSameGroup(r.groups[0], t.groups[0]);
+    EXPECT_TRUE(r.alsoTessT.empty());
+    // The further t the maps also fit (infer --also-t) travel with them; out of range: refused.
+    m.alsoTessT = {5.0, 2.5};
+    WritePemManifest(m);
+    EXPECT_EQ(ReadPemManifest(m.dir).alsoTessT, (std::vector<double>{5.0, 2.5}));
+    m.alsoTessT = {0.0};
+    WritePemManifest(m);
+    const std::string path = (fs::path(m.dir) / kManifestJson).string();
+    EXPECT_EQ(ErrorOf([&] { ReadPemManifest(m.dir); }).rfind(path + ": ", 0), 0u);
     // The first manifest format is refused with what to do.
     WriteFile(fs::path(m.dir) / kManifestJson, R"({"format": "pemref_pem/1"})");
     EXPECT_NE(ErrorOf([&] { ReadPemManifest(m.dir); }).find("infer again"), std::string::npos);

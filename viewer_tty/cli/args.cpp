@@ -62,6 +62,16 @@ void AddMapSizeOptions(CLI::App* sub, int* res, int* maxRes) {
                     "two, >= --res; PEM §4 EM resolution)");
 }
 
+void AddTessellationOptions(CLI::App* sub, double* tessT, std::vector<double>* alsoTessT) {
+    sub->add_option("--t", *tessT, "tessellation t (subpixels) the maps are fitted on")
+        ->check(CLI::Range(0.25, 1e4));
+    sub->add_option("--also-t", *alsoTessT,
+                    "further t the layer maps also fit, e.g. 5: maps that hold up when drawn "
+                    "at that t too")
+        ->delimiter(',')
+        ->check(CLI::Range(0.25, 1e4));
+}
+
 CLI::Option* AddParameterizationOption(CLI::App* sub, runtime::Parameterization* parameterization) {
     std::string names;
     for (runtime::Parameterization p : runtime::kParameterizations)

@@ -12,6 +12,7 @@
 #include <functional>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "raster/camera.h"
 #include "runtime/renderer.h"
@@ -34,6 +35,10 @@ void AddMapHardwareOptions(CLI::App* sub, runtime::MapHardware* hardware);
 // --res N and --max-res N: the maps' face size, and the largest a test rendering at each sample
 // may choose (infer, bake and demo).
 void AddMapSizeOptions(CLI::App* sub, int* res, int* maxRes);
+
+// --t T and --also-t T1,T2..: the tessellation t the maps are fitted on (and the renderers'
+// default for them), and further t whose rows they also fit (infer and bake).
+void AddTessellationOptions(CLI::App* sub, double* tessT, std::vector<double>* alsoTessT);
 
 // --parameterization NAME: the maps' layout (runtime/parameterization.h).
 CLI::Option* AddParameterizationOption(CLI::App* sub, runtime::Parameterization* parameterization);

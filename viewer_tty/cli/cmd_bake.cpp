@@ -46,8 +46,7 @@ void AddBakeCommand(CLI::App& app) {
         ->check(CLI::Range(1, 64));
     sub->add_option("--threads", o.threads, "threads per job")->check(CLI::Range(1, 256));
     AddMapHardwareOptions(sub, &o.infer.hardware);
-    sub->add_option("--t", o.infer.tessT, "tessellation t (subpixels) the maps are fitted on")
-        ->check(CLI::Range(0.25, 1e4));
+    AddTessellationOptions(sub, &o.infer.tessT, &o.infer.alsoTessT);
     sub->add_flag("--quiet", a.quiet, "no progress line");
 }
 

@@ -64,7 +64,7 @@ void AddInferCommand(CLI::App& app) {
     sub->add_option("--neighbours", o.neighbours,
                     "samples on each side in the simultaneous solve (hybrid §4.3)")
         ->check(CLI::Range(0, 8));
-    sub->add_option("--t", o.tessT, "tessellation t (subpixels)")->check(CLI::Range(0.25, 1e4));
+    AddTessellationOptions(sub, &o.tessT, &o.alsoTessT);
     sub->add_option("--max-iterations", o.solve.maxIterations, "LSMR iterations per map")
         ->check(CLI::Range(1, 100000));
     char smoothHelp[96];
