@@ -112,6 +112,31 @@ done
 grep -q '"also_t"' "$work/a/p15/manifest.json" || { echo "FAIL: --also-t not in the manifest"; exit 1; }
 expect_gain "--also-t 5 drawn at t = 5" "$work/a/p1_t5.exr" "$work/a/p15_t5.exr" 0.5
 expect_gain "--also-t 5 drawn at t = 1" "$work/a/p1_t1.exr" "$work/a/p15_t1.exr" -1
+# The error budget of maps fitted at a t other than the renderers' default also lists the frame
+# at that default t = 5, at the sample and off it; at the sample it is the frame `render --t 5`
+# draws, so its PSNR against the two-term frame is the outside check's (masked_psnr).
+mkdir "$work/b15"
+cp "$work/a/bake.json" "$work/b15/"
+ln -s "$work/a/trace" "$work/b15/trace"
+ln -s "$work/a/p15" "$work/b15/pem"
+"$pemref" report "$work/b15" --threads 2 --reference-spp 2 --no-stability --no-packs --quiet
+for g in 0 1; do
+  read -r db _ < <("$masked_psnr" "$work/a/p15_t5.exr" "$work/a/trace/view_001/greedy.exr" \
+      "$work/a/trace/view_001/group_$g/b_R.exr")
+  echo "$db"
+done > "$work/b15/outside.txt"
+"$py" - "$work/b15" <<'PY' || { echo "FAIL: the error budget at t = 5"; exit 1; }
+import json, sys
+d = sys.argv[1]
+outside = [float(x) for x in open(f"{d}/outside.txt").read().split()]
+budget = json.load(open(f"{d}/report.json"))["budget"]
+for i, b in enumerate(b for b in budget if b["position"] == "on circle"):
+    st = b["stages"]
+    if [x["stage"] for x in st[-2:]] != ["hardware frame", "hardware frame at t=5"]: sys.exit(f"stages {st}")
+    if abs(st[-1]["psnrVsTwoTerm"] - outside[i]) > 0.01: sys.exit(f"group {i}: {st[-1]} against {outside[i]}")
+for b in budget:
+    if b["position"] != "on circle" and [x["stage"] for x in b["stages"]] != ["hybrid at the sample", "off the samples", "off the samples at t=5"]: sys.exit(f"off the samples: {b}")
+PY
 # A baked directory renders from anywhere: copied elsewhere and rendered from another working
 # directory, the same bytes.
 cp -r "$work/a" "$work/copied"

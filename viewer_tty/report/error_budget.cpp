@@ -6,11 +6,13 @@
 #include <cmath>
 #include <limits>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <utility>
 
 #include "base/display_image.h"
 #include "pipeline/display_target.h"
 #include "pipeline/layout.h"
+#include "runtime/lens_paths.h"
 #include "runtime/parameterization.h"
 #include "trace/image.h"
 #include "trace/render.h"
@@ -22,6 +24,11 @@ namespace {
 using Rgb = std::vector<float>;  // 3 floats per pixel, rows top-down
 
 constexpr double kIdenticalPsnr = 100.0;  // DisplayPsnr of equal images
+
+// The suffix of the stages drawn at the renderers' default t: "at t=5".
+std::string AtDefaultT() {
+    return "at " + TessSetting(runtime::kDefaultTessT);
+}
 
 Rgb RgbOf(const trace::FloatImage& img) {
     Rgb out(static_cast<size_t>(img.width) * static_cast<size_t>(img.height) * 3);
@@ -173,6 +180,7 @@ int GroupMapResolution(const runtime::MapSet& maps, int view, const runtime::Len
 // The stages at the sample for one group.
 GroupBudget SampleBudget(runtime::Renderer& renderer, const pipeline::TraceManifest& trace,
                          const runtime::LensGroupEm& g, const runtime::RenderedFrame& hybrid,
+                         const runtime::RenderedFrame* hybridDefaultT,
                          const runtime::RenderSettings& s) {
     const int view = renderer.maps().inferred.front();
     const raster::Camera cam = renderer.SampleCamera(view);
@@ -218,6 +226,7 @@ GroupBudget SampleBudget(runtime::Renderer& renderer, const pipeline::TraceManif
     stage("map resolution", composited(exact.ownResolution));
     stage("texgen, filtering, solve", composited(renderer.LayerImages(cam, s, g.index, view)));
     stage("hardware frame", RgbOf(hybrid.image));
+    if (hybridDefaultT) stage("hardware frame " + AtDefaultT(), RgbOf(hybridDefaultT->image));
     return b;
 }
 
@@ -240,22 +249,43 @@ runtime::RenderedFrame HybridAt(runtime::Renderer& renderer, const BudgetPositio
     return at.hybrid ? *at.hybrid : renderer.Render(at.camera, s);
 }
 
-// The same at an off-sample position, against the full tree (first) and the two-term frame
-// (second), all three frames rendered there (or given).
-std::pair<std::vector<double>, std::vector<double>> HybridVsTracedAt(
-    runtime::Renderer& renderer, const BudgetPosition& at, const runtime::RenderSettings& s,
-    int spp) {
+// The same at the renderers' default t, when the maps were fitted at another t (else nullopt).
+std::optional<runtime::RenderedFrame> HybridDefaultTAt(runtime::Renderer& renderer,
+                                                       const BudgetPosition& at,
+                                                       runtime::RenderSettings s) {
+    if (renderer.maps().tessT == runtime::kDefaultTessT) return std::nullopt;
+    if (at.hybridDefaultT) return at.hybridDefaultT;
+    s.t = runtime::kDefaultTessT;
+    return renderer.Render(at.camera, s);
+}
+
+// Per group, a hybrid frame off the samples against the full tree and the two-term frame there.
+struct OffSample {
+    std::vector<double> vsFull, vsTwoTerm;
+};
+
+// The hybrid frames at an off-sample position (at the maps' t, then at the renderers' default t
+// when the maps' is another) against the full tree and the two-term frame, all rendered there
+// (or given).
+std::vector<OffSample> HybridVsTracedAt(runtime::Renderer& renderer, const BudgetPosition& at,
+                                        const runtime::RenderSettings& s, int spp) {
     runtime::RenderSettings rs = s;
     rs.method = runtime::Method::RayTraced;
     rs.spp = spp;
-    const runtime::RenderedFrame hybrid = HybridAt(renderer, at, s);
     const size_t groups = renderer.maps().groups.size();
     const trace::FloatImage twoTerm =
         trace::RenderFrame(renderer.tracer(), at.camera, spp, trace::Model::Greedy, s.threads)
             .image;
     const trace::FloatImage full =
         at.traced ? at.traced->image : renderer.Render(at.camera, rs).image;
-    return {HybridVsTraced(hybrid, full, groups), HybridVsTraced(hybrid, twoTerm, groups)};
+    std::vector<OffSample> out;
+    const auto add = [&](const runtime::RenderedFrame& hybrid) {
+        out.push_back(
+            {HybridVsTraced(hybrid, full, groups), HybridVsTraced(hybrid, twoTerm, groups)});
+    };
+    add(HybridAt(renderer, at, s));
+    if (const auto other = HybridDefaultTAt(renderer, at, s)) add(*other);
+    return out;
 }
 
 }  // namespace
@@ -269,8 +299,11 @@ std::vector<GroupBudget> ErrorBudget(runtime::Renderer& renderer,
     std::vector<GroupBudget> out;
     // Step 1: the stages at the sample.
     const runtime::RenderedFrame hybrid = HybridAt(renderer, positions[0], s);
+    const std::optional<runtime::RenderedFrame> hybridDefaultT =
+        HybridDefaultTAt(renderer, positions[0], s);
     for (const runtime::LensGroupEm& g : renderer.maps().groups)
-        out.push_back(SampleBudget(renderer, trace, g, hybrid, s));
+        out.push_back(SampleBudget(renderer, trace, g, hybrid,
+                                   hybridDefaultT ? &*hybridDefaultT : nullptr, s));
     // Step 2: off the samples, against the same measures at the sample (the trace's reference
     // and two-term frame there are the ray tracer's frames at K×K).
     const int view = renderer.maps().inferred.front();
@@ -280,12 +313,15 @@ std::vector<GroupBudget> ErrorBudget(runtime::Renderer& renderer,
     const std::vector<double> atSampleVsTarget =
         HybridVsTraced(hybrid, pipeline::ReadFrameImage(trace, view, "greedy"), groups);
     for (size_t k = 1; k < positions.size(); ++k) {
-        const auto [there, thereVsTarget] = HybridVsTracedAt(renderer, positions[k], s, trace.spp);
+        const std::vector<OffSample> there = HybridVsTracedAt(renderer, positions[k], s, trace.spp);
         for (const runtime::LensGroupEm& g : renderer.maps().groups) {
             GroupBudget b{GroupName(g), positions[k].name, 0, {}};
             const size_t i = size_t(g.index);
             AddStage(&b, "hybrid at the sample", atSample[i], atSampleVsTarget[i]);
-            AddStage(&b, "off the samples", there[i], thereVsTarget[i]);
+            AddStage(&b, "off the samples", there[0].vsFull[i], there[0].vsTwoTerm[i]);
+            if (there.size() > 1)
+                AddStage(&b, "off the samples " + AtDefaultT(), there[1].vsFull[i],
+                         there[1].vsTwoTerm[i]);
             out.push_back(b);
         }
     }

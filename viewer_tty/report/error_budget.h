@@ -28,9 +28,13 @@
 //                       per-vertex lookups, MIP filtering and the regularized solve cost
 //   hardware frame      the hybrid frame as drawn: per-vertex F·G, the maps and framebuffer in
 //                       their formats (8-bit, or float), the hardware's compositing
+//   hardware frame at   when the maps were fitted at another t: the same frame tessellated at the
+//   t=5                 renderers' default t (runtime::kDefaultTessT), what interactive rendering
+//                       costs
 // Off the samples (between two samples, 10° above): the hybrid frame against the ray tracer at
 // the same K×K there (full tree, and the two-term model traced there), on the pixels that see
-// the group, compared with the same measures at the sample: the cost of being away from it.
+// the group, compared with the same measures at the sample: the cost of being away from it (and,
+// when the maps were fitted at another t, at the renderers' default t there as well).
 // Not here: the documents (report_writer.h: GroupBudget, the table and budget.svg).
 #pragma once
 
@@ -49,8 +53,9 @@ struct BudgetPosition {
     std::string name;
     raster::Camera camera;
     // Frames the caller drew there already, else drawn here: the hybrid frame at the maps' t
-    // (RenderSettings t = 0) and the full-tree ray tracer at the trace's K×K.
-    std::optional<runtime::RenderedFrame> hybrid, traced;
+    // (RenderSettings t = 0), at the renderers' default t, and the full-tree ray tracer at the
+    // trace's K×K.
+    std::optional<runtime::RenderedFrame> hybrid, hybridDefaultT, traced;
 };
 
 // positions[0] is the first inferred sample; the others are off the samples.

@@ -118,6 +118,8 @@ PackReference MeasurePosition(runtime::Renderer& renderer, const Position& pos,
         const runtime::RenderSettings& rs = run.settings;
         if (rs.method == runtime::Method::Hybrid && rs.t == renderer.maps().tessT)
             budget->hybrid = f;
+        if (rs.method == runtime::Method::Hybrid && rs.t == runtime::kDefaultTessT)
+            budget->hybridDefaultT = f;
         if (rs.method == runtime::Method::RayTraced && rs.spp == budgetSpp) budget->traced = f;
     }
     return {pos.name, pos.camera, refImage, mask};
@@ -239,7 +241,7 @@ void RunReportJob(const ReportJobOptions& o) {
     std::vector<PackReference> references;
     std::vector<BudgetPosition> at;
     for (const Position& pos : positions) {
-        at.push_back({pos.name, pos.camera, {}, {}});
+        at.push_back({pos.name, pos.camera, {}, {}, {}});
         references.push_back(MeasurePosition(*renderer, pos,
                                              Methods(renderer->maps().tessT, o.threads), o,
                                              viewsDir, trace ? trace->spp : 0, &at.back(), &data));
