@@ -28,6 +28,13 @@ struct FragmentTarget {
     RenderingMatrix* matrix;                 // matrix mode: offsets per row
     MatrixRows* rows;                        // matrix mode: taps per pixel
     std::vector<uint32_t>* depth = nullptr;  // Frame::depth set: its buffer
+    PixelBox box;  // the pixels the buffers hold (frame.h DrawnBox), rows top-down
+
+    // Index of pixel (x, y) (GL window coordinates, inside `box`) in the buffers.
+    size_t Index(int x, int y) const {
+        return static_cast<size_t>(box.y + box.height - 1 - y) * static_cast<size_t>(box.width) +
+               static_cast<size_t>(x - box.x);
+    }
 };
 
 constexpr int kBandQuadRows = 4;  // rows of 2x2 quads per band (8 pixel rows)

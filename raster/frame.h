@@ -174,6 +174,12 @@ struct Pass {
 // unclamped).
 enum class ColorFormat { Rgba8, Rgba32F };
 
+// A rectangle of framebuffer pixels in GL window coordinates (x right, y up from the bottom row).
+struct PixelBox {
+    int x = 0, y = 0, width = 0, height = 0;
+    bool operator==(const PixelBox&) const = default;
+};
+
 // One frame: a cleared colour buffer (and depth buffer, if any) and passes drawn in order,
 // no culling, viewport (0, 0, width, height), depth range [0, 1], clip volume
 // -w <= x, y, z <= w (z not clipped with depthClamp).
@@ -183,10 +189,20 @@ struct Frame {
     std::array<uint8_t, 4> clear{0, 0, 0, 0};  // glClearColor(c / 255.0f): RGBA32F stores those
     bool depthClamp = false;
     std::optional<DepthBuffer> depth;  // absent: no depth buffer (depth tests pass everything)
-    std::vector<Texture> textures;     // cube maps and 2D textures, referenced by Pass::texture
+    // glScissor: fragments outside the box are discarded, so every pixel inside is what the whole
+    // frame would hold there; the results (render.h) hold only the box's pixels. A caller that
+    // reads part of a large frame draws, clears and stores only that part. Absent: the whole
+    // framebuffer. Must lie inside it and hold a pixel.
+    std::optional<PixelBox> scissor;
+    std::vector<Texture> textures;  // cube maps and 2D textures, referenced by Pass::texture
     std::vector<Pass> passes;
     bool operator==(const Frame&) const = default;
 };
+
+// The pixels a frame draws and its results hold: the scissor box, or the whole framebuffer.
+inline PixelBox DrawnBox(const Frame& frame) {
+    return frame.scissor ? *frame.scissor : PixelBox{0, 0, frame.width, frame.height};
+}
 
 // Images -------------------------------------------------------------------------------------
 

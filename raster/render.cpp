@@ -15,6 +15,8 @@
 #include <cstring>
 #include <exception>
 #include <stdexcept>
+#include <string>
+#include <type_traits>
 
 #include "base/parallel.h"
 #include "base/worker_pool.h"
@@ -66,6 +68,7 @@ void SetupTriangles(const Frame& frame, const std::vector<const Pass*>& passes,
                     std::vector<std::vector<TriangleSetup>>* setups) {
     const Pass& pass = *passes[0];
     const int numAttribs = PassColourAttrib(pass) + 4;
+    const PixelBox drawn = DrawnBox(frame);
     std::vector<WindowTriangle> clipped;
     TriangleSetup s;
     for (int t = first; t < last; ++t) {
@@ -77,9 +80,7 @@ void SetupTriangles(const Frame& frame, const std::vector<const Pass*>& passes,
         }
         if (inside) {
             const std::vector<WindowVertex>& w0 = pv.window[0];
-            if (!SetupTriangle(w0[idx[0]], w0[idx[1]], w0[idx[2]], numAttribs, frame.width,
-                               frame.height, &s))
-                continue;
+            if (!SetupTriangle(w0[idx[0]], w0[idx[1]], w0[idx[2]], numAttribs, drawn, &s)) continue;
             (*setups)[0].push_back(s);
             for (size_t k = 1; k < passes.size(); ++k) {
                 const std::vector<WindowVertex>& wk = pv.window[k];
@@ -95,7 +96,7 @@ void SetupTriangles(const Frame& frame, const std::vector<const Pass*>& passes,
                          PassClipVertex(pk, idx[2]), numAttribs, frame.depthClamp, frame.width,
                          frame.height, ViewportForm::Fused, &clipped);
             for (const WindowTriangle& w : clipped)
-                if (SetupTriangle(w[0], w[1], w[2], numAttribs, frame.width, frame.height, &s))
+                if (SetupTriangle(w[0], w[1], w[2], numAttribs, drawn, &s))
                     (*setups)[k].push_back(s);
         }
     }
@@ -184,10 +185,10 @@ void DrawPass(const std::vector<std::vector<PassDraw>>& variants, std::vector<Se
 }
 
 // Whether two passes of equally sized frames give the same triangles at the same places:
-// bitwise equal positions, indices and attribute count.
+// bitwise equal positions, indices and attribute count, the same scissor box.
 bool SamePositions(const Frame& fa, const Pass& a, const Frame& fb, const Pass& b) {
     if (fa.width != fb.width || fa.height != fb.height || fa.depthClamp != fb.depthClamp ||
-        a.numUnits != b.numUnits || a.indices != b.indices ||
+        fa.scissor != fb.scissor || a.numUnits != b.numUnits || a.indices != b.indices ||
         a.vertices.size() != b.vertices.size())
         return false;
     bool same = true;  // no early exit: the loop vectorises
@@ -246,27 +247,34 @@ void DrawFrame(const FragmentTarget& tg) {
     DrawFrames({tg});
 }
 
-// The frame's depth buffer cleared into *buffer (nullptr, buffer left empty, without one).
+// Pixels in a box.
+size_t Pixels(const PixelBox& box) {
+    return static_cast<size_t>(box.width) * static_cast<size_t>(box.height);
+}
+
+// The frame's depth buffer (its drawn box) cleared into *buffer (nullptr, buffer left empty,
+// without one).
 std::vector<uint32_t>* ClearedDepth(const Frame& frame, std::vector<uint32_t>* buffer) {
     if (!frame.depth) return nullptr;
-    buffer->assign(static_cast<size_t>(frame.width) * static_cast<size_t>(frame.height),
+    buffer->assign(Pixels(DrawnBox(frame)),
                    DepthClearValue(frame.depth->format, frame.depth->clear));
     return buffer;
 }
 
-// A target drawing `frame` into *r: its pictures (and depth buffer) cleared.
+// A target drawing `frame` into *r: its pictures (and depth buffer) over the drawn box cleared.
 FragmentTarget ClearedTarget(const PreparedFrame& prepared, const RenderOptions& options,
                              RenderResult* r) {
     const Frame& frame = prepared.frame();
-    const size_t n = static_cast<size_t>(frame.width) * frame.height;
+    const PixelBox box = DrawnBox(frame);
+    const size_t n = Pixels(box);
     const auto& k = frame.clear;
     const bool floats = FloatTarget(frame, options);
     // The 8-bit picture: one pass, a byte fill when the four bytes agree, else 32-bit stores.
     if (!floats || options.picture8) {
         if (k[0] == k[1] && k[1] == k[2] && k[2] == k[3]) {
-            r->image8 = {frame.width, frame.height, std::vector<uint8_t>(4 * n, k[0])};
+            r->image8 = {box.width, box.height, std::vector<uint8_t>(4 * n, k[0])};
         } else {
-            r->image8 = {frame.width, frame.height, std::vector<uint8_t>(4 * n)};
+            r->image8 = {box.width, box.height, std::vector<uint8_t>(4 * n)};
             uint32_t pattern;
             std::memcpy(&pattern, k.data(), 4);
             uint8_t* px = r->image8.rgba.data();
@@ -275,7 +283,7 @@ FragmentTarget ClearedTarget(const PreparedFrame& prepared, const RenderOptions&
     }
     // The float buffer: glClearColor(c / 255.0f).
     if (floats) {
-        r->imageF = {frame.width, frame.height, std::vector<float>(4 * n)};  // zeros
+        r->imageF = {box.width, box.height, std::vector<float>(4 * n)};  // zeros
         const float c[4] = {k[0] / 255.0f, k[1] / 255.0f, k[2] / 255.0f, k[3] / 255.0f};
         float* px = r->imageF.rgba.data();
         if (k[0] | k[1] | k[2] | k[3])
@@ -287,7 +295,8 @@ FragmentTarget ClearedTarget(const PreparedFrame& prepared, const RenderOptions&
             &r->imageF,
             nullptr,
             nullptr,
-            ClearedDepth(frame, &r->depth)};
+            ClearedDepth(frame, &r->depth),
+            box};
 }
 
 // The 8-bit picture of a float colour buffer, once drawn.
@@ -378,6 +387,40 @@ void RequireRgba8(const Frame& frame, const char* profile) {
             " profile draws RGBA8 textures into an RGBA8 colour buffer only");
 }
 
+// A scissor box must lie inside the framebuffer and hold a pixel.
+void RequireValidScissor(const Frame& frame) {
+    if (!frame.scissor) return;
+    const PixelBox& b = *frame.scissor;
+    if (b.width < 1 || b.height < 1 || b.x < 0 || b.y < 0 || b.width > frame.width - b.x ||
+        b.height > frame.height - b.y)
+        throw std::invalid_argument(
+            "scissor box " + std::to_string(b.width) + "x" + std::to_string(b.height) + " at (" +
+            std::to_string(b.x) + ", " + std::to_string(b.y) + ") is not inside the " +
+            std::to_string(frame.width) + "x" + std::to_string(frame.height) + " framebuffer");
+}
+
+// The whole-frame result `r` (rows top-down) cut to the frame's drawn box.
+void CropToDrawnBox(const Frame& frame, RenderResult* r) {
+    if (!frame.scissor) return;
+    const PixelBox& b = *frame.scissor;
+    const auto top = static_cast<size_t>(frame.height - b.y - b.height);
+    const auto crop = [&](const auto& in, size_t perPixel) {
+        std::remove_cvref_t<decltype(in)> out(perPixel * Pixels(b));
+        for (size_t row = 0; row < static_cast<size_t>(b.height); ++row)
+            std::copy_n(
+                in.begin() + static_cast<std::ptrdiff_t>(
+                                 perPixel * ((top + row) * static_cast<size_t>(frame.width) +
+                                             static_cast<size_t>(b.x))),
+                perPixel * static_cast<size_t>(b.width),
+                out.begin() +
+                    static_cast<std::ptrdiff_t>(perPixel * row * static_cast<size_t>(b.width)));
+        return out;
+    };
+    if (!r->image8.rgba.empty()) r->image8 = {b.width, b.height, crop(r->image8.rgba, 4)};
+    if (!r->imageF.rgba.empty()) r->imageF = {b.width, b.height, crop(r->imageF.rgba, 4)};
+    if (!r->depth.empty()) r->depth = crop(r->depth, 1);
+}
+
 }  // namespace
 
 std::shared_ptr<const PreparedTexture> PrepareTexture(const Texture& t) {
@@ -414,10 +457,12 @@ RenderResult Render(const PreparedFrame& prepared, const RenderOptions& options)
 std::vector<RenderResult> RenderFrames(const std::vector<const PreparedFrame*>& frames,
                                        const RenderOptions& options) {
     std::vector<RenderResult> results(frames.size());
-    if (options.profile == Profile::Softpipe) {
+    for (const PreparedFrame* f : frames) RequireValidScissor(f->frame());
+    if (options.profile == Profile::Softpipe) {  // scissor: the whole frame drawn, then cut
         for (size_t f = 0; f < frames.size(); ++f) {
             RequireRgba8(frames[f]->frame(), "softpipe");
             results[f] = RenderSoftpipe(*frames[f]);
+            CropToDrawnBox(frames[f]->frame(), &results[f]);
         }
         return results;
     }
@@ -433,6 +478,8 @@ std::vector<RenderResult> RenderFrames(const std::vector<const PreparedFrame*>& 
 RenderingMatrix BuildRenderingMatrix(const PreparedFrame& prepared, const RenderOptions& options,
                                      const std::vector<uint32_t>* pixels) {
     const Frame& frame = prepared.frame();
+    if (frame.scissor)
+        throw std::invalid_argument("BuildRenderingMatrix: a scissored frame (list the pixels)");
     for (size_t i = 0; i < frame.passes.size(); ++i) {
         const Pass& p = frame.passes[i];
         if (p.blend.enabled && !(p.blend == BlendState::Additive()))

@@ -82,12 +82,14 @@ class PreparedFrame {
     TexelIndexer indexer_;
 };
 
+// Every image and the depth buffer hold the frame's drawn box (frame.h DrawnBox: the scissor box,
+// or the whole framebuffer), rows top-down.
 struct RenderResult {
     // From a float colour buffer its RNE(clamp(v, 0, 1) * 255) (pemref's view of it, not a
     // driver's readback), unless RenderOptions::picture8 is false; always from an 8-bit one.
     Image8 image8;
     ImageF imageF;  // a float colour buffer (FloatTarget): its values, unclamped
-    // Frame::depth set: the depth buffer after the last pass, width * height values, rows
+    // Frame::depth set: the depth buffer after the last pass, one value per pixel, rows
     // top-down (depth.h: Z16/Z24 unorm integers, Z32F float bits); else empty.
     std::vector<uint32_t> depth;
 };
@@ -110,7 +112,8 @@ std::vector<RenderResult> RenderFrames(const std::vector<const PreparedFrame*>& 
 // offset to float rounding; in the Llvmpipe profile it is the 8-bit frame / 255, within the bound
 // of docs/raster-model.md §9 (an RGBA32F colour buffer: its floats, A * x + offset to float
 // rounding); in the Softpipe profile the 8-bit frame / 255, A * x + offset rounded once
-// (softpipe_render.h).
+// (softpipe_render.h). A frame with a scissor box throws std::invalid_argument (keep pixels by
+// listing them).
 struct RenderingMatrix {
     int64_t rows = 0, cols = 0;
     std::vector<int64_t> rowPtr;  // CSR, rows + 1 entries

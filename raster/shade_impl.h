@@ -68,7 +68,7 @@ unsigned DepthTestLanes(const FragmentTarget& tg, const DepthTest& test, const P
     for (unsigned set = mask; set; set &= set - 1) {  // the set lanes, no branch per lane
         const int l = std::countr_zero(set);
         const int x = gx + kLaneDx[l], y = gy + kLaneDy[l];
-        uint32_t& stored = (*tg.depth)[static_cast<size_t>(frame.height - 1 - y) * frame.width + x];
+        uint32_t& stored = (*tg.depth)[tg.Index(x, y)];
         const uint32_t value = DepthFromFloat(format, depth->z[l]);
         if (!DepthPasses(test.func, format, value, stored)) continue;
         if (test.write) stored = value;
@@ -107,7 +107,7 @@ void ShadeGroup(const FragmentTarget& tg, const Pass& pass, const LaneAttribs& q
     for (unsigned set = mask; set; set &= set - 1) {  // the set lanes, no branch per lane
         const int l = std::countr_zero(set);
         const int x = gx + kLaneDx[l], y = gy + kLaneDy[l];
-        const size_t pixel = static_cast<size_t>(frame.height - 1 - y) * frame.width + x;
+        const size_t pixel = tg.Index(x, y);
 
         // Fragment colour: texture(u0) * texture(u1) * colour, left to right.
         RgbaF src, mod;

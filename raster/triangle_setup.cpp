@@ -79,7 +79,7 @@ void Planes(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c,
 }  // namespace
 
 bool SetupTriangle(const WindowVertex& in0, const WindowVertex& in1, const WindowVertex& in2,
-                   int numAttribs, int width, int height, TriangleSetup* out) {
+                   int numAttribs, const PixelBox& drawn, TriangleSetup* out) {
     // Snap to the subpixel grid; draw clockwise triangles as (v1, v0, v2).
     const WindowVertex* v[3] = {&in0, &in1, &in2};
     Fixed p{{Snap(in0.x), Snap(in1.x), Snap(in2.x)}, {Snap(in0.y), Snap(in1.y), Snap(in2.y)}};
@@ -91,15 +91,15 @@ bool SetupTriangle(const WindowVertex& in0, const WindowVertex& in1, const Windo
         std::swap(p.y[0], p.y[1]);
     }
 
-    // Bounding box in pixels (bottom-left fill convention), clipped to the framebuffer.
+    // Bounding box in pixels (bottom-left fill convention), clipped to the drawn box.
     const int32_t minX = std::min({p.x[0], p.x[1], p.x[2]});
     const int32_t maxX = std::max({p.x[0], p.x[1], p.x[2]});
     const int32_t minY = std::min({p.y[0], p.y[1], p.y[2]});
     const int32_t maxY = std::max({p.y[0], p.y[1], p.y[2]});
-    out->x0 = std::max(minX >> 8, 0);
-    out->x1 = std::min((maxX - 1) >> 8, width - 1);
-    out->y0 = std::max((minY + 1) >> 8, 0);
-    out->y1 = std::min((maxY - 1 + 1) >> 8, height - 1);
+    out->x0 = std::max(minX >> 8, drawn.x);
+    out->x1 = std::min((maxX - 1) >> 8, drawn.x + drawn.width - 1);
+    out->y0 = std::max((minY + 1) >> 8, drawn.y);
+    out->y1 = std::min((maxY - 1 + 1) >> 8, drawn.y + drawn.height - 1);
     if (out->x0 > out->x1 || out->y0 > out->y1) return false;
     for (int i = 0; i < 3; ++i) out->edge[i] = MakeEdge(p, i);
     // A small triangle that covers no pixel centre writes nothing: no attribute planes.

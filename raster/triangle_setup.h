@@ -18,6 +18,7 @@
 #include <cmath>
 #include <cstdint>
 
+#include "raster/frame.h"
 #include "raster/numeric.h"
 
 namespace pem::raster {
@@ -41,19 +42,19 @@ struct Plane {
 
 struct TriangleSetup {
     std::array<Edge, 3> edge;
-    int x0, x1, y0, y1;  // pixel bounding box, inclusive, clipped to the framebuffer
-    Plane oow;           // interpolated 1/w (llvmpipe's position.w channel)
-    Plane z;             // window z: the fragment depth (depth.h FragmentDepth)
+    int x0, x1, y0, y1;                   // pixel bounding box, inclusive, clipped to the drawn box
+    Plane oow;                            // interpolated 1/w (llvmpipe's position.w channel)
+    Plane z;                              // window z: the fragment depth (depth.h FragmentDepth)
     std::array<Plane, kMaxAttribs> attr;  // premultiplied by 1/w (perspective-correct)
     int numAttribs = 0;
     bool swapped = false;  // clockwise: set up as (v1, v0, v2)
 };
 
-// Sets up a triangle for a framebuffer of width x height. Returns false when nothing is drawn
-// (zero fixed-point area, the bounding box misses the framebuffer, or a small triangle covers
-// no pixel centre).
+// Sets up a triangle drawn into the pixels of `drawn` (the framebuffer, or its scissor box).
+// Returns false when nothing is drawn (zero fixed-point area, the bounding box misses `drawn`,
+// or a small triangle covers no pixel centre in it).
 bool SetupTriangle(const WindowVertex& v0, const WindowVertex& v1, const WindowVertex& v2,
-                   int numAttribs, int width, int height, TriangleSetup* out);
+                   int numAttribs, const PixelBox& drawn, TriangleSetup* out);
 
 // The attribute planes of `out`, set up by SetupTriangle from vertices at the same positions,
 // for other attributes: (v0, v1, v2) are those vertices with the other attributes.

@@ -55,11 +55,11 @@ double ValueAt(const raster::ImageF& img, size_t i) {
 // Adds weight · (the mean of the covered subpixels of a k× frame, supersampling.h) to acc at
 // the listed pixels (RGB per listed pixel).
 template <class Image>
-void Accumulate(const Image& img, const std::vector<uint8_t>& covered, int width, int k,
+void Accumulate(const Image& img, const std::vector<uint8_t>& covered, const SubpixelLayout& layout,
                 double weight, const std::vector<uint32_t>& pixels, std::vector<double>* acc) {
     double rgba[4];
     for (size_t p = 0; p < pixels.size(); ++p) {
-        CoveredMean(img, covered, width, k, pixels[p], rgba);
+        CoveredMean(img, covered, layout, pixels[p], rgba);
         for (size_t c = 0; c < 3; ++c) (*acc)[3 * p + c] += weight * rgba[c];
     }
 }
@@ -67,15 +67,16 @@ void Accumulate(const Image& img, const std::vector<uint8_t>& covered, int width
 // Adds weight · frame at every subpixel of the border pixels to the group's samples
 // (silhouettes.h), and marks the covered ones.
 template <class Image>
-void AccumulateBorder(const Image& img, const std::vector<uint8_t>& covered, int width, int k,
-                      double weight, const std::vector<glm::ivec2>& border, GroupSamples* samples) {
-    const size_t kk = static_cast<size_t>(k) * static_cast<size_t>(k);
+void AccumulateBorder(const Image& img, const std::vector<uint8_t>& covered,
+                      const SubpixelLayout& layout, double weight,
+                      const std::vector<glm::ivec2>& border, GroupSamples* samples) {
+    const size_t kk = static_cast<size_t>(layout.k) * static_cast<size_t>(layout.k);
     samples->rgb.resize(border.size() * kk * 3, 0.0);
     samples->covered.resize(border.size() * kk, 0);
     for (size_t b = 0; b < border.size(); ++b)
         for (size_t s = 0; s < kk; ++s) {
-            const uint32_t pixel = static_cast<uint32_t>(border[b].y * width + border[b].x);
-            const size_t i = SubpixelIndex(pixel, width, k, static_cast<int>(s));
+            const uint32_t pixel = static_cast<uint32_t>(border[b].y * layout.width + border[b].x);
+            const size_t i = SubpixelIndex(pixel, layout, static_cast<int>(s));
             samples->covered[b * kk + s] = covered[i];
             for (size_t c = 0; c < 3; ++c)
                 samples->rgb[3 * (b * kk + s) + c] += weight * ValueAt(img, 4 * i + c);
@@ -187,10 +188,13 @@ class FrameBatch {
 
     // Renders every frame and adds weight · frame at the listed pixels to acc, and at the
     // border pixels' subpixels to `border` (when given). The frames share their geometry, so
-    // the first one's depth buffer says which subpixels the group covers.
+    // the first one's depth buffer says which subpixels the group covers. Only the box of the
+    // subpixels read is drawn (a scissor box: the frames hold nothing else).
     void Draw(const std::vector<uint32_t>& pixels, std::vector<double>* acc,
               const std::vector<glm::ivec2>& borderPixels, GroupSamples* border) {
         const auto t0 = Clock::now();
+        const SubpixelLayout layout = ReadLayout(pixels, borderPixels);
+        for (raster::Frame& f : frames_) f.scissor = layout.box;
         std::vector<raster::PreparedFrame> pf;
         pf.reserve(frames_.size());
         for (size_t f = 0; f < frames_.size(); ++f)
@@ -205,20 +209,45 @@ class FrameBatch {
             rr.empty() ? std::vector<uint8_t>() : CoveredSubpixels(rr[0].depth, kLensDepth);
         for (size_t f = 0; f < rr.size(); ++f) {
             if (frames_[f].colorFormat == raster::ColorFormat::Rgba32F)
-                AddFrame(rr[f].imageF, covered, weights_[f], pixels, acc, borderPixels, border);
+                AddFrame(rr[f].imageF, covered, layout, weights_[f], pixels, acc, borderPixels,
+                         border);
             else
-                AddFrame(rr[f].image8, covered, weights_[f], pixels, acc, borderPixels, border);
+                AddFrame(rr[f].image8, covered, layout, weights_[f], pixels, acc, borderPixels,
+                         border);
         }
         stats_->rasterSeconds += Since(t0);
     }
 
   private:
+    // The k× frame's box holding the subpixels of the listed and the border pixels (the whole
+    // frame when there are none).
+    SubpixelLayout ReadLayout(const std::vector<uint32_t>& pixels,
+                              const std::vector<glm::ivec2>& borderPixels) const {
+        const int width = camera_.width, height = camera_.height;
+        SubpixelLayout layout = WholeFrame(width, height, k_);
+        if (pixels.empty() && borderPixels.empty()) return layout;
+        glm::ivec2 lo(width, height), hi(-1, -1);
+        for (uint32_t p : pixels) {
+            const glm::ivec2 at(static_cast<int>(p % static_cast<uint32_t>(width)),
+                                static_cast<int>(p / static_cast<uint32_t>(width)));
+            lo = glm::min(lo, at);
+            hi = glm::max(hi, at);
+        }
+        for (const glm::ivec2& at : borderPixels) {
+            lo = glm::min(lo, at);
+            hi = glm::max(hi, at);
+        }
+        layout.box = SubpixelBox(height, k_, lo, hi);
+        return layout;
+    }
+
     template <class Image>
-    void AddFrame(const Image& img, const std::vector<uint8_t>& covered, double weight,
-                  const std::vector<uint32_t>& pixels, std::vector<double>* acc,
-                  const std::vector<glm::ivec2>& borderPixels, GroupSamples* border) const {
-        Accumulate(img, covered, camera_.width, k_, weight, pixels, acc);
-        if (border) AccumulateBorder(img, covered, camera_.width, k_, weight, borderPixels, border);
+    void AddFrame(const Image& img, const std::vector<uint8_t>& covered,
+                  const SubpixelLayout& layout, double weight, const std::vector<uint32_t>& pixels,
+                  std::vector<double>* acc, const std::vector<glm::ivec2>& borderPixels,
+                  GroupSamples* border) const {
+        Accumulate(img, covered, layout, weight, pixels, acc);
+        if (border) AccumulateBorder(img, covered, layout, weight, borderPixels, border);
     }
 
     std::shared_ptr<const raster::PreparedTexture> Prepared(const raster::Texture* map) {
@@ -560,8 +589,9 @@ raster::ImageF BoxFiltered(const raster::RenderResult& rr, const raster::Camera&
     raster::ImageF out{camera.width, camera.height, {}};
     out.rgba.resize(4 * static_cast<size_t>(camera.width) * static_cast<size_t>(camera.height));
     double rgba[4];
+    const SubpixelLayout layout = WholeFrame(camera.width, camera.height, k);
     for (uint32_t p = 0; p < out.rgba.size() / 4; ++p) {
-        CoveredMean(rr.imageF, covered, camera.width, k, p, rgba);
+        CoveredMean(rr.imageF, covered, layout, p, rgba);
         for (size_t c = 0; c < 4; ++c) out.rgba[4 * p + c] = static_cast<float>(rgba[c]);
     }
     return out;

@@ -12,12 +12,12 @@ namespace pem::runtime {
 namespace {
 
 template <class Image, class Scale>
-int Mean(const Image& image, const std::vector<uint8_t>& covered, int width, int k, uint32_t pixel,
-         Scale scale, double rgba[4]) {
+int Mean(const Image& image, const std::vector<uint8_t>& covered, const SubpixelLayout& layout,
+         uint32_t pixel, Scale scale, double rgba[4]) {
     std::fill(rgba, rgba + 4, 0.0);
     int n = 0;
-    for (int s = 0; s < k * k; ++s) {
-        const size_t i = SubpixelIndex(pixel, width, k, s);
+    for (int s = 0; s < layout.k * layout.k; ++s) {
+        const size_t i = SubpixelIndex(pixel, layout, s);
         if (!covered[i]) continue;
         ++n;
         for (size_t c = 0; c < 4; ++c) rgba[c] += scale(image.rgba[4 * i + c]);
@@ -29,11 +29,25 @@ int Mean(const Image& image, const std::vector<uint8_t>& covered, int width, int
 
 }  // namespace
 
-size_t SubpixelIndex(uint32_t pixel, int width, int k, int s) {
-    const size_t x = pixel % static_cast<uint32_t>(width), y = pixel / static_cast<uint32_t>(width);
-    const size_t i = static_cast<size_t>(s % k), j = static_cast<size_t>(s / k);
-    const size_t kk = static_cast<size_t>(k);
-    return (kk * y + j) * kk * static_cast<size_t>(width) + kk * x + i;
+SubpixelLayout WholeFrame(int width, int height, int k) {
+    return {width, height, k, {0, 0, k * width, k * height}};
+}
+
+raster::PixelBox SubpixelBox(int height, int k, glm::ivec2 lo, glm::ivec2 hi) {
+    // Rows k lo.y .. k (hi.y + 1) - 1 from the top are GL rows k (height - 1 - hi.y) upwards.
+    return {k * lo.x, k * (height - 1 - hi.y), k * (hi.x - lo.x + 1), k * (hi.y - lo.y + 1)};
+}
+
+size_t SubpixelIndex(uint32_t pixel, const SubpixelLayout& layout, int s) {
+    const auto width = static_cast<uint32_t>(layout.width);
+    const int x = static_cast<int>(pixel % width), y = static_cast<int>(pixel / width);
+    const int k = layout.k;
+    // The subpixel's column and its row from the top of the k× frame, then of the box.
+    const int column = k * x + s % k, row = k * y + s / k;
+    const raster::PixelBox& b = layout.box;
+    const int boxTop = k * layout.height - b.y - b.height;
+    return static_cast<size_t>(row - boxTop) * static_cast<size_t>(b.width) +
+           static_cast<size_t>(column - b.x);
 }
 
 std::vector<uint8_t> CoveredSubpixels(const std::vector<uint32_t>& depth,
@@ -44,16 +58,16 @@ std::vector<uint8_t> CoveredSubpixels(const std::vector<uint32_t>& depth,
     return covered;
 }
 
-int CoveredMean(const raster::Image8& image, const std::vector<uint8_t>& covered, int width, int k,
-                uint32_t pixel, double rgba[4]) {
+int CoveredMean(const raster::Image8& image, const std::vector<uint8_t>& covered,
+                const SubpixelLayout& layout, uint32_t pixel, double rgba[4]) {
     return Mean(
-        image, covered, width, k, pixel, [](uint8_t v) { return v / 255.0; }, rgba);
+        image, covered, layout, pixel, [](uint8_t v) { return v / 255.0; }, rgba);
 }
 
-int CoveredMean(const raster::ImageF& image, const std::vector<uint8_t>& covered, int width, int k,
-                uint32_t pixel, double rgba[4]) {
+int CoveredMean(const raster::ImageF& image, const std::vector<uint8_t>& covered,
+                const SubpixelLayout& layout, uint32_t pixel, double rgba[4]) {
     return Mean(
-        image, covered, width, k, pixel, [](float v) { return static_cast<double>(v); }, rgba);
+        image, covered, layout, pixel, [](float v) { return static_cast<double>(v); }, rgba);
 }
 
 }  // namespace pem::runtime

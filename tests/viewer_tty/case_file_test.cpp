@@ -10,6 +10,7 @@
 #include <cmath>
 #include <filesystem>
 #include <random>
+#include <stdexcept>
 #include <string>
 
 #include "viewer_tty/conformance/case_codec.h"
@@ -209,6 +210,13 @@ TEST(CaseFile, RoundTripRandomFrames) {
         EXPECT_TRUE(f == g) << "seed " << seed;
         EXPECT_EQ(CaseToJson(g), text) << "seed " << seed;
     }
+}
+
+// The case format has no scissor test: a frame with a scissor box is not written as if whole.
+TEST(CaseFile, AScissoredFrameIsRefused) {
+    Frame f = RandomFrame(1);
+    f.scissor = raster::PixelBox{0, 0, 1, 1};
+    EXPECT_THROW(CaseToJson(f), std::invalid_argument);
 }
 
 TEST(CaseFile, RoundTripKeepsNegativeZeroAndSubnormals) {

@@ -152,7 +152,9 @@ void Print(const Json& j, int indent, std::ostringstream* out) {
 }  // namespace
 
 std::string CaseToJson(const raster::Frame& frame) {
-    // Step 1: the framebuffer.
+    // Step 1: the framebuffer (the case format has no scissor test).
+    if (frame.scissor)
+        throw std::invalid_argument("CaseToJson: the case format has no scissor box");
     Json j;
     j["format"] = "gl_ref_case/1";
     j["width"] = frame.width;
