@@ -7,7 +7,8 @@
 // the trace's samples (pipeline/infer_job.h), so the maps are looked up as they are fitted.
 //
 //   frame.width = k * width, frame.height = k * height;        // draw
-//   double rgba[4]; int n = CoveredMean(image8, covered, width, k, pixel, rgba);
+//   double rgba[4];
+//   int n = CoveredMean(image8, covered, WholeFrame(width, height, k), pixel, rgba);
 //
 // Subpixel s = j k + i of pixel (x, y) is pixel (k x + i, k y + j) of the k× frame: the ray
 // tracer's sample s (trace/tracer.h SampleOffset), at the same position. A caller that reads
