@@ -207,8 +207,40 @@ bool SameVertices(const Pass& a, const Pass& b) {
            0;
 }
 
+// Whether pass p + 1 of a target's frame may be drawn together with pass p, each fragment's
+// pass p + 1 right after its pass p (triangle by triangle) instead of after the whole pass p:
+// pass p writes depth with LESS and replaces the colour, pass p + 1 tests EQUAL without writing,
+// at the same positions. Per pixel, the fragments pass p keeps are those that set a new least
+// depth; each replaces whatever came before, so only what follows the first fragment at the
+// final depth survives: in both orders that is its pass p colour, then the pass p + 1 draws of
+// the fragments at that depth, in primitive order. The bytes are those of drawing the passes
+// one after the other. Not in matrix mode (its rows are kept in the two-pass order).
+bool FusesWithNext(const FragmentTarget& tg, size_t p) {
+    const Frame& frame = tg.frame->frame();
+    if (tg.rows || !frame.depth || p + 1 >= frame.passes.size()) return false;
+    const Pass& a = frame.passes[p];
+    const Pass& b = frame.passes[p + 1];
+    return a.depthTest && a.depthTest->func == DepthFunc::Less && a.depthTest->write &&
+           !a.blend.enabled && b.depthTest && b.depthTest->func == DepthFunc::Equal &&
+           !b.depthTest->write && SamePositions(frame, a, frame, b);
+}
+
+// Adds a draw to the variant of passes with its vertices (SameVertices), or to a new one.
+void AddDraw(const PassDraw& draw, std::vector<std::vector<PassDraw>>* variants) {
+    auto same = std::find_if(variants->begin(), variants->end(), [&](const auto& v) {
+        return SameVertices(*v[0].second, *draw.second);
+    });
+    if (same == variants->end()) {
+        variants->emplace_back();
+        same = variants->end() - 1;
+    }
+    same->push_back(draw);
+}
+
 // Draws every frame's passes, each framebuffer's in order; pass p of several frames at the same
-// positions is set up once (its attribute planes once per distinct set of vertices).
+// positions is set up once (its attribute planes once per distinct set of vertices). A pass
+// that fuses with the next (FusesWithNext) takes the next one along as further variants, drawn
+// after its own in every lane group.
 void DrawFrames(const std::vector<FragmentTarget>& targets) {
     const int workers = std::max(1, targets[0].options.threads);
     PassVertices pv;
@@ -216,28 +248,32 @@ void DrawFrames(const std::vector<FragmentTarget>& targets) {
     size_t nPasses = 0;
     for (const FragmentTarget& tg : targets)
         nPasses = std::max(nPasses, tg.frame->frame().passes.size());
+    std::vector<size_t> next(targets.size(), 0);  // per target: its first pass not yet drawn
     for (size_t p = 0; p < nPasses; ++p) {
-        std::vector<uint8_t> drawn(targets.size(), 0);
         for (size_t f = 0; f < targets.size(); ++f) {
             const Frame& frame = targets[f].frame->frame();
-            if (drawn[f] || p >= frame.passes.size()) continue;
+            if (next[f] > p || p >= frame.passes.size()) continue;
+            // Step 1: the targets whose pass p lies where this one's does, by vertices.
             std::vector<std::vector<PassDraw>> variants{{{&targets[f], &frame.passes[p]}}};
+            next[f] = p + 1;
             for (size_t g = f + 1; g < targets.size(); ++g) {
                 const Frame& other = targets[g].frame->frame();
-                if (drawn[g] || p >= other.passes.size() ||
+                if (next[g] > p || p >= other.passes.size() ||
                     !SamePositions(frame, frame.passes[p], other, other.passes[p]))
                     continue;
-                const Pass& op = other.passes[p];
-                auto same = std::find_if(variants.begin(), variants.end(), [&](const auto& v) {
-                    return SameVertices(*v[0].second, op);
-                });
-                if (same == variants.end()) {
-                    variants.emplace_back();
-                    same = variants.end() - 1;
-                }
-                same->push_back({&targets[g], &op});
-                drawn[g] = 1;
+                AddDraw({&targets[g], &other.passes[p]}, &variants);
+                next[g] = p + 1;
             }
+            // Step 2: their passes p + 1 drawn along where they fuse.
+            std::vector<std::vector<PassDraw>> fused;
+            for (const std::vector<PassDraw>& v : variants)
+                for (const PassDraw& d : v) {
+                    if (!FusesWithNext(*d.first, p)) continue;
+                    const size_t t = static_cast<size_t>(d.first - targets.data());
+                    AddDraw({d.first, &d.first->frame->frame().passes[p + 1]}, &fused);
+                    next[t] = p + 2;
+                }
+            variants.insert(variants.end(), fused.begin(), fused.end());
             DrawPass(variants, &chunks, &pv);
         }
     }

@@ -98,7 +98,9 @@ RenderResult Render(const PreparedFrame& frame, const RenderOptions& options);
 
 // Several frames at once, each result equal to Render(*frames[i], options): pass p of frames
 // whose pass p has the same geometry (frame size and depth clamp, vertices, indices, units; the
-// textures and blending may differ) is clipped and set up once for all of them.
+// textures and blending may differ) is clipped and set up once for all of them; a layer pass
+// pair (LESS with writes, replacing; then EQUAL without writes at the same positions) is drawn
+// in one traversal (docs/raster-model.md §6).
 std::vector<RenderResult> RenderFrames(const std::vector<const PreparedFrame*>& frames,
                                        const RenderOptions& options);
 

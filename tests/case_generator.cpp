@@ -1487,6 +1487,56 @@ void FloatFormats(std::vector<NamedCase>* out) {
     }
 }
 
+// The renderers' layer passes (runtime/README.md): a non-convex mesh drawn with LESS and depth
+// writes, replacing the colour, then at the same positions with other coordinates and colours,
+// EQUAL without writes, premultiplied over, then once more, additive. The mesh overlaps itself
+// (the back of a sphere behind its front, a second sphere through it) and repeats
+// every seventh triangle with its own vertices (exact depth ties: the EQUAL passes blend each
+// copy, in order). raster/render.cpp draws the first two passes in one traversal
+// (FusesWithNext); these cases hold that to llvmpipe. 8-bit and float targets and textures.
+void DepthLayers(std::vector<NamedCase>* out) {
+    for (DepthFormat format : kDepthFormats)
+        for (bool floats : {false, true}) {
+            Rng rng{8900 + 2 * static_cast<uint64_t>(format) + (floats ? 1 : 0)};
+            Frame f = DepthFrame(80, 64, format, 1.0f);
+            const SamplerState trilinear =
+                Sampler(Filter::Linear, MipFilter::Linear, Filter::Linear);
+            f.textures.push_back(Cube(32, trilinear, 101, true));
+            f.textures.push_back(Cube(16, trilinear, 102, true));
+            Pass outer = DepthPass(DepthFunc::Less, true);
+            const float aspect = 80.0f / 64.0f;
+            AddSphere(&outer, 12, 16, aspect, {0.2f, 0.4f, 1.6f}, {0, 0, 0}, 1.0f, 1.0f, &rng);
+            AddSphere(&outer, 8, 12, aspect, {0.2f, 0.4f, 1.6f}, {0.5f, 0.2f, 0.3f}, 0.6f, -1.0f);
+            const size_t triangles = outer.indices.size() / 3;
+            for (size_t t = 0; t < triangles; t += 7)
+                for (size_t k = 0; k < 3; ++k) {
+                    outer.indices.push_back(static_cast<uint32_t>(outer.vertices.size()));
+                    outer.vertices.push_back(outer.vertices[outer.indices[3 * t + k]]);
+                }
+            Pass inner = outer;
+            inner.depthTest = DepthTest{DepthFunc::Equal, false};
+            inner.texture[0] = 1;
+            inner.blend.enabled = true;
+            inner.blend.dstRgb = inner.blend.dstAlpha = BlendFactor::OneMinusSrcAlpha;
+            for (Vertex& v : inner.vertices) {
+                v.coord[0] = glm::vec3(v.coord[0].z, -v.coord[0].x, v.coord[0].y);
+                v.color = RandomColour(&rng);
+            }
+            Pass added = inner;
+            added.blend = BlendState::Additive();
+            for (Vertex& v : added.vertices) v.color = 0.25f * RandomColour(&rng);
+            f.passes = {outer, inner, added};
+            std::string name = std::string("depth_layers_") + DepthFormatName(format);
+            if (floats) {
+                for (size_t k = 0; k < f.textures.size(); ++k)
+                    f.textures[k] = FloatTexture(f.textures[k], 8950 + k);
+                f.colorFormat = raster::ColorFormat::Rgba32F;
+                name = "f32_" + name;
+            }
+            out->push_back({name, std::move(f)});
+        }
+}
+
 }  // namespace
 
 Frame LayoutSphere(runtime::Parameterization p, int size, const SamplerState& sampler, int rings,
@@ -1526,6 +1576,7 @@ std::vector<NamedCase> ConformanceCases() {
     Extremes(&out);
     Parameterizations(&out);
     FloatFormats(&out);
+    DepthLayers(&out);  // after FloatFormats: makes its own float variants
     return out;
 }
 

@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 #include "raster/render.h"
@@ -251,6 +252,56 @@ TEST(DepthRender, FramesDrawnTogetherKeepTheirOwnDepthBuffers) {
         EXPECT_EQ(together[i].depth, alone.depth) << i;
     }
     EXPECT_NE(together[0].image8, together[2].image8);
+}
+
+// The bits of a float image (NaN-safe equality).
+std::vector<uint32_t> Bits(const ImageF& image) {
+    std::vector<uint32_t> bits(image.rgba.size());
+    std::memcpy(bits.data(), image.rgba.data(), 4 * bits.size());
+    return bits;
+}
+
+TEST(DepthRender, LayerPassesDrawnTogetherAsOneAfterTheOther) {
+    // A pass writing depth with LESS and replacing, then the same positions tested EQUAL
+    // without writes, is drawn in one traversal (render.cpp FusesWithNext), for several frames
+    // at once as the renderers draw their terms and samples. Reference: each frame alone with
+    // an empty pass between the two, so they are drawn one after the other (the order the
+    // conformance cases hold to llvmpipe).
+    for (const char* name : {"depth_layers_z24", "f32_depth_layers_z32f"}) {
+        std::vector<Frame> frames;
+        for (const test::NamedCase& c : test::ConformanceCases())
+            if (c.name == name) frames.push_back(c.frame);
+        ASSERT_EQ(frames.size(), 1u) << name;
+        Frame term = frames[0];  // same positions, other coordinates (another term)
+        for (Pass& p : term.passes)
+            for (Vertex& v : p.vertices)
+                v.coord[0] = glm::vec3(-v.coord[0].y, v.coord[0].x, v.coord[0].z);
+        frames.push_back(term);
+        Frame sample = frames[0];  // same passes, other maps (another sample)
+        std::swap(sample.textures[0], sample.textures[1]);
+        frames.push_back(sample);
+        Frame lequal = frames[0];  // not drawn together: LEQUAL keeps the last of equal depths
+        lequal.passes[0].depthTest->func = DepthFunc::LEqual;
+        frames.push_back(lequal);
+        std::vector<PreparedFrame> prepared;
+        for (const Frame& f : frames) prepared.emplace_back(f);
+        std::vector<const PreparedFrame*> ptrs;
+        for (const PreparedFrame& p : prepared) ptrs.push_back(&p);
+        for (int threads : {1, 3}) {
+            RenderOptions opt;
+            opt.threads = threads;
+            const std::vector<RenderResult> together = RenderFrames(ptrs, opt);
+            for (size_t i = 0; i < frames.size(); ++i) {
+                Frame apart = frames[i];
+                apart.passes.insert(apart.passes.begin() + 1, Pass{});
+                const RenderResult alone = Render(PreparedFrame(apart), opt);
+                EXPECT_EQ(together[i].image8, alone.image8) << name << " " << i;
+                EXPECT_EQ(Bits(together[i].imageF), Bits(alone.imageF)) << name << " " << i;
+                EXPECT_EQ(together[i].depth, alone.depth) << name << " " << i;
+            }
+            EXPECT_NE(together[0].image8, together[1].image8) << name;
+        }
+    }
 }
 
 // The columns (4 * texel + channel) of texture k.
