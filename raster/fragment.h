@@ -29,6 +29,10 @@ struct FragmentTarget {
     MatrixRows* rows;                        // matrix mode: taps per pixel
     std::vector<uint32_t>* depth = nullptr;  // Frame::depth set: its buffer
     PixelBox box;  // the pixels the buffers hold (frame.h DrawnBox), rows top-down
+    // Another target of the same draw whose depth buffer equals this one's after every fragment
+    // (the same positions, depth tests and order: render.cpp SameDepthHistory): the tests are
+    // made on its buffer only, and this one has none (`depth` null) until it is copied at the end.
+    const FragmentTarget* depthTwin = nullptr;
 
     // Index of pixel (x, y) (GL window coordinates, inside `box`) in the buffers.
     size_t Index(int x, int y) const {

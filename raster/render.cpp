@@ -207,6 +207,19 @@ bool SameVertices(const Pass& a, const Pass& b) {
            0;
 }
 
+// Whether two frames keep equal depth buffers fragment by fragment: the same depth buffer, and
+// pass by pass the same positions (SamePositions: size, box, clamp), depth test and blending on
+// or off, so DrawFrames draws their passes in the same DrawPass calls (fused alike).
+bool SameDepthHistory(const Frame& a, const Frame& b) {
+    if (!a.depth || a.depth != b.depth || a.passes.size() != b.passes.size()) return false;
+    for (size_t p = 0; p < a.passes.size(); ++p)
+        if (a.passes[p].depthTest != b.passes[p].depthTest ||
+            a.passes[p].blend.enabled != b.passes[p].blend.enabled ||
+            !SamePositions(a, a.passes[p], b, b.passes[p]))
+            return false;
+    return true;
+}
+
 // Whether pass p + 1 of a target's frame may be drawn together with pass p, each fragment's
 // pass p + 1 right after its pass p (triangle by triangle) instead of after the whole pass p:
 // pass p writes depth with LESS and replaces the colour, pass p + 1 tests EQUAL without writing,
@@ -299,7 +312,7 @@ std::vector<uint32_t>* ClearedDepth(const Frame& frame, std::vector<uint32_t>* b
 
 // A target drawing `frame` into *r: its pictures (and depth buffer) over the drawn box cleared.
 FragmentTarget ClearedTarget(const PreparedFrame& prepared, const RenderOptions& options,
-                             RenderResult* r) {
+                             RenderResult* r, bool ownDepth = true) {
     const Frame& frame = prepared.frame();
     const PixelBox box = DrawnBox(frame);
     const size_t n = Pixels(box);
@@ -331,7 +344,7 @@ FragmentTarget ClearedTarget(const PreparedFrame& prepared, const RenderOptions&
             &r->imageF,
             nullptr,
             nullptr,
-            ClearedDepth(frame, &r->depth),
+            ownDepth ? ClearedDepth(frame, &r->depth) : nullptr,
             box};
 }
 
@@ -502,12 +515,26 @@ std::vector<RenderResult> RenderFrames(const std::vector<const PreparedFrame*>& 
         }
         return results;
     }
+    // Frames with the same depth history share the first one's depth buffer (its tests), and
+    // get a copy of it at the end.
+    std::vector<size_t> twin(frames.size());
+    for (size_t f = 0; f < frames.size(); ++f) {
+        twin[f] = f;
+        for (size_t g = 0; g < f && twin[f] == f; ++g)
+            if (twin[g] == g && SameDepthHistory(frames[g]->frame(), frames[f]->frame()))
+                twin[f] = g;
+    }
     std::vector<FragmentTarget> targets;
-    for (size_t f = 0; f < frames.size(); ++f)
-        targets.push_back(ClearedTarget(*frames[f], options, &results[f]));
+    targets.reserve(frames.size());
+    for (size_t f = 0; f < frames.size(); ++f) {
+        targets.push_back(ClearedTarget(*frames[f], options, &results[f], twin[f] == f));
+        if (twin[f] != f) targets[f].depthTwin = &targets[twin[f]];
+    }
     if (!targets.empty()) DrawFrames(targets);
-    for (size_t f = 0; f < frames.size(); ++f)
+    for (size_t f = 0; f < frames.size(); ++f) {
+        if (twin[f] != f) results[f].depth = results[twin[f]].depth;
         FinishResult(frames[f]->frame(), options, &results[f]);
+    }
     return results;
 }
 

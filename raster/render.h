@@ -100,7 +100,8 @@ RenderResult Render(const PreparedFrame& frame, const RenderOptions& options);
 // whose pass p has the same geometry (frame size and depth clamp, vertices, indices, units; the
 // textures and blending may differ) is clipped and set up once for all of them; a layer pass
 // pair (LESS with writes, replacing; then EQUAL without writes at the same positions) is drawn
-// in one traversal (docs/raster-model.md §6).
+// in one traversal, and frames whose depth buffers stay equal share one (docs/raster-model.md
+// §6).
 std::vector<RenderResult> RenderFrames(const std::vector<const PreparedFrame*>& frames,
                                        const RenderOptions& options);
 

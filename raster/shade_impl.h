@@ -156,20 +156,45 @@ void ShadeGroup(const FragmentTarget& tg, const Pass& pass, const LaneAttribs& q
     }
 }
 
+// The depth tests done in one lane group, by depth buffer (the owner's: FragmentTarget::
+// depthTwin) and pass: a target drawn with a twin takes the test its owner's buffer gave (the
+// first draw of the pair tests, whichever it is), as its own buffer would have given it.
+struct LaneTests {
+    struct Entry {
+        const FragmentTarget* owner;
+        size_t pass;
+        unsigned passed;
+    };
+    std::vector<Entry> done;  // capacity: one entry per draw (reserved by the caller)
+
+    unsigned Test(const PassDraw& d, const Plane& zPlane, int gx, int gy, unsigned mask,
+                  LaneDepth* depth) {
+        const FragmentTarget& owner = d.first->depthTwin ? *d.first->depthTwin : *d.first;
+        const auto pass = static_cast<size_t>(d.second - d.first->frame->frame().passes.data());
+        for (const Entry& e : done)
+            if (e.owner == &owner && e.pass == pass) return e.passed;
+        const unsigned passed =
+            DepthTestLanes(owner, *d.second->depthTest, zPlane, gx, gy, mask, depth);
+        done.push_back({&owner, pass, passed});
+        return passed;
+    }
+};
+
 // Draws the covered lanes `mask` of lane group (gx, gy) of triangle i into every draw: each
-// draw's depth test (fragment depth computed once), then interpolation (once per variant, only
-// if some draw has lanes left) and shading. `qa`, `footprints`: the caller's scratch.
+// draw's depth test (fragment depth computed once; once per depth buffer and pass, LaneTests),
+// then interpolation (once per variant, only if some draw has lanes left) and shading. `qa`,
+// `tests`, `footprints`: the caller's scratch.
 void DrawGroup(const std::vector<std::vector<PassDraw>>& variants, const SetupChunk& triangles,
-               size_t i, int gx, int gy, unsigned mask, LaneAttribs* qa,
+               size_t i, int gx, int gy, unsigned mask, LaneAttribs* qa, LaneTests* tests,
                std::array<FastFootprints, kMaxUnits>* footprints) {
     LaneDepth depth;
+    tests->done.clear();
     for (size_t k = 0; k < variants.size(); ++k) {
         bool interpolated = false;
         for (const PassDraw& d : variants[k]) {
             unsigned live = mask;
-            if (d.first->depth && d.second->depthTest) {
-                live = DepthTestLanes(*d.first, *d.second->depthTest, triangles[0][i].z, gx, gy,
-                                      mask, &depth);
+            if ((d.first->depth || d.first->depthTwin) && d.second->depthTest) {
+                live = tests->Test(d, triangles[0][i].z, gx, gy, mask, &depth);
                 if (!live) continue;
             }
             if (!interpolated) {
@@ -189,7 +214,7 @@ void DrawGroup(const std::vector<std::vector<PassDraw>>& variants, const SetupCh
 // depth test (llvmpipe skips empty 8-lane vectors).
 // `footprints`: the caller's scratch (reset per lane group and variant).
 void DrawTriangle(const std::vector<std::vector<PassDraw>>& variants, const SetupChunk& triangles,
-                  size_t i, int worker, int workers,
+                  size_t i, int worker, int workers, LaneTests* tests,
                   std::array<FastFootprints, kMaxUnits>* footprints) {
     const TriangleSetup& t = triangles[0][i];
     // A triangle in fewer bands than there are workers may lie in none of this worker's.
@@ -241,7 +266,7 @@ void DrawTriangle(const std::vector<std::vector<PassDraw>>& variants, const Setu
                 for (int l = 0; l < kLanes; ++l)
                     mask &= ~(static_cast<unsigned>(WrapAdd64(base, laneOffset[e][l]) <= 0) << l);
             }
-            if (mask) DrawGroup(variants, triangles, i, gx, gy, mask, &qa, footprints);
+            if (mask) DrawGroup(variants, triangles, i, gx, gy, mask, &qa, tests, footprints);
         }
     }
 }
@@ -249,8 +274,12 @@ void DrawTriangle(const std::vector<std::vector<PassDraw>>& variants, const Setu
 void DrawBands(const std::vector<std::vector<PassDraw>>& variants, const SetupChunk& triangles,
                int worker, int workers) {
     std::array<FastFootprints, kMaxUnits> footprints;
+    LaneTests tests;
+    size_t draws = 0;
+    for (const std::vector<PassDraw>& v : variants) draws += v.size();
+    tests.done.reserve(draws);
     for (size_t i = 0; i < triangles[0].size(); ++i)
-        DrawTriangle(variants, triangles, i, worker, workers, &footprints);
+        DrawTriangle(variants, triangles, i, worker, workers, &tests, &footprints);
 }
 
 }  // namespace
