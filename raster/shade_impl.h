@@ -104,6 +104,14 @@ void ShadeGroup(const FragmentTarget& tg, const Pass& pass, const LaneAttribs& q
     const int co = PassColourAttrib(pass);
     const bool linear = tg.options.profile == Profile::Linear;
     const bool floatTarget = linear || frame.colorFormat == ColorFormat::Rgba32F;
+    // The renderers' float blends inline (BlendFloatLlvmpipe's operations): replace, which does
+    // not read the buffer, and premultiplied over, src + dst * (1 - src.a).
+    const BlendState& b = pass.blend;
+    const bool replace = !b.enabled;
+    const bool over = b.enabled && b.srcRgb == BlendFactor::One && b.srcAlpha == BlendFactor::One &&
+                      b.dstRgb == BlendFactor::OneMinusSrcAlpha &&
+                      b.dstAlpha == BlendFactor::OneMinusSrcAlpha &&
+                      b.eqRgb == BlendEquation::Add && b.eqAlpha == BlendEquation::Add;
     for (unsigned set = mask; set; set &= set - 1) {  // the set lanes, no branch per lane
         const int l = std::countr_zero(set);
         const int x = gx + kLaneDx[l], y = gy + kLaneDy[l];
@@ -133,6 +141,15 @@ void ShadeGroup(const FragmentTarget& tg, const Pass& pass, const LaneAttribs& q
         }
         if (floatTarget) {  // unclamped
             float* d = &tg.imageF->rgba[4 * pixel];
+            if (replace) {
+                std::memcpy(d, src.data(), sizeof src);
+                continue;
+            }
+            if (over && !linear) {
+                const float keep = 1.0f - src[3];
+                for (int c = 0; c < 4; ++c) d[c] = src[c] + d[c] * keep;
+                continue;
+            }
             const RgbaF dst{d[0], d[1], d[2], d[3]};
             const RgbaF out =
                 linear ? BlendF(pass.blend, src, dst) : BlendFloatLlvmpipe(pass.blend, src, dst);
