@@ -12,8 +12,8 @@
 
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
-#include <cstring>
 #include <limits>
 
 #include "raster/render.h"
@@ -257,7 +257,7 @@ TEST(DepthRender, FramesDrawnTogetherKeepTheirOwnDepthBuffers) {
 // The bits of a float image (NaN-safe equality).
 std::vector<uint32_t> Bits(const ImageF& image) {
     std::vector<uint32_t> bits(image.rgba.size());
-    std::memcpy(bits.data(), image.rgba.data(), 4 * bits.size());
+    for (size_t i = 0; i < bits.size(); ++i) bits[i] = std::bit_cast<uint32_t>(image.rgba[i]);
     return bits;
 }
 
