@@ -10,7 +10,6 @@
 #include <cstdlib>
 #include <cstring>
 #include <exception>
-#include <limits>
 #include <string>
 
 #include "viewer_tty/cli/args.h"
@@ -54,9 +53,12 @@ int main(int argc, char** argv) {
     // Frames allocate and free buffers of a few MB each (passes, images, meshes), the solver
     // vectors of tens to hundreds of MB (A x, A^T y, its iterates): keep them all in the heap and
     // keep freed memory there, rather than mapping, faulting in and zeroing fresh pages at every
-    // allocation (a third of an inference's time with mapped allocations above 32 MB).
+    // allocation (a third of an inference's time with mapped allocations above 32 MB). -1: never
+    // trim (mallopt(3)); the largest int still let an inference map of 72 M entries hand 3 GB back
+    // when freed, which the next map faulted in again (a demo inference 71 → 67 s, system time
+    // 16 → 9–13 s).
     mallopt(M_MMAP_MAX, 0);
-    mallopt(M_TRIM_THRESHOLD, std::numeric_limits<int>::max());
+    mallopt(M_TRIM_THRESHOLD, -1);
     CLI::App app{"pemref — parameterized, layered environment maps, CPU reference"};
     app.require_subcommand(1);
     app.set_version_flag("--version", pem::cli::VersionText());
