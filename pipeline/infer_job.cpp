@@ -434,7 +434,7 @@ MapReport SolveMap(const std::vector<MapInput>& inputs, const InferJobOptions& o
 struct ViewGeometry {
     int view = 0;
     raster::Camera camera;
-    runtime::LensPaths lp;
+    runtime::LensPaths lp;  // its mesh and counts; the paths are released once exits holds them
     std::vector<uint32_t> order;
     glm::mat4 vp{1.0f};
     double weight = 1.0;
@@ -501,6 +501,9 @@ ViewGeometry SampleGeometry(const Context& c, int u, const runtime::LensGroupEm&
         vg.fg[term] = ReadGroupImage(c.tm, u, group, "FG_" + tn);
         vg.exits[term] = runtime::TermExits(vg.lp.tess.paths, term);
     }
+    // The paths themselves (each vertex's events, several hundred bytes a vertex, GBs at t = 1)
+    // are not read again: their memory goes to the rendering matrices.
+    std::vector<std::optional<trace::VertexPaths>>().swap(vg.lp.tess.paths);
     return vg;
 }
 
