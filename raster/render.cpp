@@ -356,23 +356,38 @@ void FinishResult(const Frame& frame, const RenderOptions& options, RenderResult
             UnormFromFloat(r->imageF.rgba[i], options.rounding == UnormRounding::HalfEven);
 }
 
-// CSR from the per-pixel taps of the kept pixels (the i-th kept pixel is pixelOf(i)): each pixel's
-// taps sorted by texel, then per channel c the row of columns 4 * texel + c, duplicate texels
-// summed in sorted order. Pixels are independent, so ranges of them run in parallel (sort and
-// count, then fill); each pixel freed once copied.
-template <class PixelOf>
-void RowsToCsr(MatrixRows* rows, size_t kept, const PixelOf& pixelOf, RenderingMatrix* m,
-               int threads) {
-    const auto n = static_cast<int64_t>(kept);
+// CSR from the logged taps of the kept pixels (the i-th kept pixel is pixelOf(i), kept pixels
+// increasing; keptFrom(p) the first kept index whose pixel is >= p): per band, its log grouped by
+// pixel (MatrixRows::GroupBand), each kept pixel's taps sorted by texel, then per channel c the
+// row of columns 4 * texel + c, duplicate texels summed in sorted order. Bands are independent,
+// so they run in parallel (group, sort and count, then fill); each band's log freed once copied.
+template <class PixelOf, class KeptFrom>
+void RowsToCsr(MatrixRows* rows, int width, int height, size_t kept, const PixelOf& pixelOf,
+               const KeptFrom& keptFrom, RenderingMatrix* m, int threads) {
     const auto byTexel = [](const MatrixTap& a, const MatrixTap& b) { return a.texel < b.texel; };
-    // Step 1: each pixel's taps sorted, its distinct texels counted.
+    const int bands = static_cast<int>(rows->Bands());
+    // The pixels of band b: GL rows [y0, y1) are the buffer's rows [height - y1, height - y0).
+    const auto bandPixels = [&](int b) {
+        const int y0 = b * MatrixRows::kBandRows;
+        const int y1 = std::min(y0 + MatrixRows::kBandRows, height);
+        return std::pair{static_cast<size_t>(height - y1) * static_cast<size_t>(width),
+                         static_cast<size_t>(height - y0) * static_cast<size_t>(width)};
+    };
+    // Step 1: each band's taps grouped by pixel, each kept pixel's sorted, its texels counted.
     std::vector<uint32_t> distinct(kept, 0);
-    base::ForRanges(n, threads, 4096, [&](int64_t i0, int64_t i1) {
-        for (auto i = static_cast<size_t>(i0); i < static_cast<size_t>(i1); ++i) {
-            std::vector<MatrixTap>& row = (*rows)[pixelOf(i)];
-            std::sort(row.begin(), row.end(), byTexel);
-            for (size_t k = 0; k < row.size(); ++k)
-                distinct[i] += k == 0 || row[k].texel != row[k - 1].texel ? 1u : 0u;
+    std::vector<std::vector<uint32_t>> first(static_cast<size_t>(bands));
+    base::ParallelFor(bands, threads, [&](int b) {
+        const auto [p0, p1] = bandPixels(b);
+        std::vector<MatrixTap> scratch;
+        std::vector<uint32_t>& f = first[static_cast<size_t>(b)];
+        rows->GroupBand(static_cast<size_t>(b), p0, p1, &f, &scratch);
+        std::vector<MatrixTap>& log = rows->Log(static_cast<size_t>(b));
+        for (size_t i = keptFrom(p0); i < keptFrom(p1); ++i) {
+            const size_t p = pixelOf(i) - p0;
+            const auto row = log.begin() + f[p], end = log.begin() + f[p + 1];
+            std::sort(row, end, byTexel);
+            for (auto k = row; k != end; ++k)
+                distinct[i] += k == row || k->texel != (k - 1)->texel ? 1u : 0u;
         }
     });
     // Step 2: row pointers, four rows of distinct[i] entries per pixel.
@@ -383,12 +398,17 @@ void RowsToCsr(MatrixRows* rows, size_t kept, const PixelOf& pixelOf, RenderingM
     m->col.resize(static_cast<size_t>(m->rowPtr.back()));
     m->val.resize(m->col.size());
     // Step 3: the entries.
-    base::ForRanges(n, threads, 4096, [&](int64_t i0, int64_t i1) {
-        for (auto i = static_cast<size_t>(i0); i < static_cast<size_t>(i1); ++i) {
-            std::vector<MatrixTap>& row = (*rows)[pixelOf(i)];
+    base::ParallelFor(bands, threads, [&](int b) {
+        const auto [p0, p1] = bandPixels(b);
+        const std::vector<uint32_t>& f = first[static_cast<size_t>(b)];
+        std::vector<MatrixTap>& log = rows->Log(static_cast<size_t>(b));
+        for (size_t i = keptFrom(p0); i < keptFrom(p1); ++i) {
+            const size_t p = pixelOf(i) - p0;
+            const MatrixTap* row = log.data() + f[p];
+            const size_t count = f[p + 1] - f[p];
             auto at = static_cast<size_t>(m->rowPtr[4 * i]);
             for (size_t c = 0; c < 4; ++c)
-                for (size_t k = 0; k < row.size(); ++k) {
+                for (size_t k = 0; k < count; ++k) {
                     const double v = row[k].weight * static_cast<double>(row[k].modulation[c]);
                     if (k > 0 && row[k].texel == row[k - 1].texel) {
                         m->val[at - 1] += v;
@@ -397,8 +417,8 @@ void RowsToCsr(MatrixRows* rows, size_t kept, const PixelOf& pixelOf, RenderingM
                     m->col[at] = 4 * row[k].texel + static_cast<uint32_t>(c);
                     m->val[at++] = v;
                 }
-            std::vector<MatrixTap>().swap(row);
         }
+        std::vector<MatrixTap>().swap(log);
     });
 }
 
@@ -569,7 +589,7 @@ RenderingMatrix BuildRenderingMatrix(const PreparedFrame& prepared, const Render
                 FloatTarget(frame, options)
                     ? static_cast<double>(static_cast<float>(frame.clear[c]) / 255.0f)
                     : frame.clear[c] / 255.0;
-    MatrixRows rows(n);
+    MatrixRows rows(n, frame.height);
     // The rows and the rendered picture in one draw (softpipe: the picture drawn after).
     RenderResult r;
     if (options.profile == Profile::Softpipe) {
@@ -584,7 +604,12 @@ RenderingMatrix BuildRenderingMatrix(const PreparedFrame& prepared, const Render
         FinishResult(frame, options, &r);
     }
     // The kept pixels' rows, offsets, fragment counts and rendered values.
-    RowsToCsr(&rows, kept, pixelOf, &m, options.threads);
+    const auto keptFrom = [&](size_t p) {
+        return pixels ? static_cast<size_t>(std::lower_bound(list.begin(), list.end(), p) -
+                                            list.begin())
+                      : p;
+    };
+    RowsToCsr(&rows, frame.width, frame.height, kept, pixelOf, keptFrom, &m, options.threads);
     KeepPixels(kept, pixelOf, &m);
     m.rendered.resize(4 * kept);
     for (size_t i = 0; i < kept; ++i)

@@ -134,10 +134,11 @@ void ShadeGroup(const FragmentTarget& tg, const Pass& pass, const LaneAttribs& q
 
         if (wantTaps) {
             const PixelTaps& lane = taps[static_cast<size_t>(l)];
-            AddFragmentRows(tg.matrix, tg.rows, pixel, pass, src, [&](std::vector<MatrixTap>& row) {
-                for (int k = 0; k < lane.Count(); ++k)
-                    row.push_back({lane.At(k).texel, static_cast<double>(lane.At(k).weight), mod});
-            });
+            AddFragmentRows(
+                tg.matrix, tg.rows, pixel, y, pass, src, [&](MatrixRows::Appender& row) {
+                    for (int k = 0; k < lane.Count(); ++k)
+                        row.Add(lane.At(k).texel, static_cast<double>(lane.At(k).weight), mod);
+                });
         }
         if (floatTarget) {  // unclamped
             float* d = &tg.imageF->rgba[4 * pixel];

@@ -153,10 +153,10 @@ void AddRows(const PreparedFrame& prepared, const Pass& pass, int x, int y,
         static_cast<size_t>(frame.height - 1 - y) * static_cast<size_t>(frame.width) +
         static_cast<size_t>(x);
     AddFragmentRows(
-        target->matrix, target->rows, pixel, pass, colour, [&](std::vector<MatrixTap>& row) {
+        target->matrix, target->rows, pixel, y, pass, colour, [&](MatrixRows::Appender& row) {
             for (const SoftpipeTap& t : taps)
-                row.push_back({prepared.indexer().Index(pass.texture[0], t.level, t.face, t.x, t.y),
-                               t.weight, mod});
+                row.Add(prepared.indexer().Index(pass.texture[0], t.level, t.face, t.x, t.y),
+                        t.weight, mod);
         });
 }
 
