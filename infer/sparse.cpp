@@ -208,12 +208,36 @@ void MultiplyQuads(const CsrMatrix& q, const Vector& x, Vector* y, int threads) 
     });
 }
 
-SparseOperator::SparseOperator(CsrMatrix a) : a_(std::move(a)) {
+SparseOperator::SparseOperator(CsrMatrix a) : rows_(a.rows), cols_(a.cols), a_(std::move(a)) {
     quad_ = QuadForm(a_, &q_);
-    if (quad_)
+    if (quad_) {
+        a_ = CsrMatrix{};
         qt_ = Transpose(q_);
-    else
+    } else {
         at_ = Transpose(a_);
+    }
+}
+
+CsrMatrix SparseOperator::A() const {
+    if (!quad_) return a_;
+    CsrMatrix a;
+    a.rows = rows_, a.cols = cols_;
+    a.rowPtr.resize(static_cast<size_t>(rows_) + 1);
+    a.col.resize(static_cast<size_t>(NonZeros()));
+    a.val.resize(a.col.size());
+    size_t at = 0;
+    for (int64_t p = 0; p < q_.rows; ++p) {
+        const auto k0 = static_cast<size_t>(q_.rowPtr[static_cast<size_t>(p)]);
+        const auto k1 = static_cast<size_t>(q_.rowPtr[static_cast<size_t>(p) + 1]);
+        for (uint32_t c = 0; c < kChannels; ++c) {
+            for (size_t k = k0; k < k1; ++k) {
+                a.col[at] = kChannels * q_.col[k] + c;
+                a.val[at++] = q_.val[k];
+            }
+            a.rowPtr[static_cast<size_t>(kChannels * p + c) + 1] = static_cast<int64_t>(at);
+        }
+    }
+    return a;
 }
 
 Vector SparseOperator::ColumnSquaredNorms(int threads) const {

@@ -111,17 +111,21 @@ inline void QuadRowSums(const int64_t* rowPtr, const uint32_t* col, const double
 void MultiplyQuads(const CsrMatrix& quads, const Vector& x, Vector* y, int threads);
 
 // A matrix with its transpose, for the solvers: in quad form when A has one (then only the
-// quad forms of A and A^T are kept besides A: the full transpose is never formed), else in CSR.
+// quad forms of A and A^T are kept: A itself, four times their size, is given back and rebuilt
+// on demand by A(); the full transpose is never formed), else in CSR.
 class SparseOperator {
   public:
     SparseOperator() = default;
     explicit SparseOperator(CsrMatrix a);
-    const CsrMatrix& A() const { return a_; }
+    // A itself (expanded from the quad form when there is one: each quad entry (p, t, v) is the
+    // entries (4p + c, 4t + c, v) of the four rows, as QuadForm read them).
+    CsrMatrix A() const;
+    int64_t NonZeros() const { return quad_ ? kChannels * q_.NonZeros() : a_.NonZeros(); }
     // Squared Euclidean norm of every column of A, summed over the rows in increasing order
     // (the same bits from the quad form as from the full transpose).
     Vector ColumnSquaredNorms(int threads) const;
-    int64_t Rows() const { return a_.rows; }
-    int64_t Cols() const { return a_.cols; }
+    int64_t Rows() const { return rows_; }
+    int64_t Cols() const { return cols_; }
     bool HasQuadForm() const { return quad_; }
     const CsrMatrix& Quads() const { return q_; }    // valid when HasQuadForm()
     const CsrMatrix& QuadsT() const { return qt_; }  // its transpose
@@ -139,7 +143,8 @@ class SparseOperator {
     }
 
   private:
-    CsrMatrix a_, at_;  // at_: A^T, formed only without a quad form
+    int64_t rows_ = 0, cols_ = 0;
+    CsrMatrix a_, at_;  // A and A^T, kept only without a quad form
     bool quad_ = false;
     CsrMatrix q_, qt_;  // quad forms of A and A^T
 };

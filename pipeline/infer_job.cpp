@@ -378,7 +378,7 @@ MapReport SolveMap(const std::vector<MapInput>& inputs, const InferJobOptions& o
     const infer::LinearSystem sys =
         infer::BuildSystem(std::move(s.a), s.frame, 0, s.target, opt.weights, systemOptions);
     rep.buildSeconds = Since(t0);
-    rep.rows = sys.k.Rows(), rep.cols = sys.Cols(), rep.nnz = sys.k.A().NonZeros();
+    rep.rows = sys.k.Rows(), rep.cols = sys.Cols(), rep.nnz = sys.k.NonZeros();
     rep.observedTexels = static_cast<int64_t>(sys.active.size());
     // Step 2: the solve.
     infer::SolveOptions so = opt.solve;

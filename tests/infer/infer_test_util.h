@@ -72,7 +72,7 @@ inline void PrintSolve(const char* name, const LinearSystem& sys, const SolveRes
         "[measure] %s: rows %lld (image %lld) cols %lld nnz %lld | %s, %d iterations, %d "
         "restarts, %.3f s | image rmse %.3g | texels [%.4g, %.4g]\n",
         name, static_cast<long long>(sys.k.Rows()), static_cast<long long>(sys.imageRows),
-        static_cast<long long>(sys.Cols()), static_cast<long long>(sys.k.A().NonZeros()),
+        static_cast<long long>(sys.Cols()), static_cast<long long>(sys.k.NonZeros()),
         ToString(r.stop), r.iterations, r.restarts, r.seconds,
         r.log.empty() ? 0.0 : r.log.back().imageRmse, lo, hi);
 }

@@ -75,6 +75,50 @@ TEST(Sparse, MultiplyAndTransposeMatchDense) {
     }
 }
 
+// A matrix whose rows 4p + c hold the same values at columns 4t + c (the image and regularizer
+// rows): the operator keeps only its quad form, gives A back whole from it, and its products
+// equal the dense reference.
+TEST(Sparse, QuadFormOperatorGivesBackTheMatrix) {
+    std::vector<double> q;
+    const CsrMatrix quads = RandomMatrix(9, 7, 3, 13, &q);
+    CsrMatrix a;
+    a.cols = kChannels * quads.cols;
+    std::vector<double> dense(static_cast<size_t>(kChannels * quads.rows * a.cols), 0.0);
+    for (int64_t p = 0; p < quads.rows; ++p)
+        for (uint32_t c = 0; c < kChannels; ++c) {
+            std::vector<uint32_t> cs;
+            std::vector<double> vs;
+            for (int64_t k = quads.rowPtr[static_cast<size_t>(p)];
+                 k < quads.rowPtr[static_cast<size_t>(p) + 1]; ++k) {
+                cs.push_back(kChannels * quads.col[static_cast<size_t>(k)] + c);
+                vs.push_back(quads.val[static_cast<size_t>(k)]);
+                dense[static_cast<size_t>((kChannels * p + c) * a.cols + cs.back())] = vs.back();
+            }
+            a.AddRow(cs, vs);
+        }
+    const SparseOperator op(a);
+    ASSERT_TRUE(op.HasQuadForm());
+    EXPECT_EQ(op.Rows(), a.rows);
+    EXPECT_EQ(op.Cols(), a.cols);
+    EXPECT_EQ(op.NonZeros(), a.NonZeros());
+    const CsrMatrix back = op.A();
+    EXPECT_EQ(back.rows, a.rows);
+    EXPECT_EQ(back.cols, a.cols);
+    EXPECT_EQ(back.rowPtr, a.rowPtr);
+    EXPECT_EQ(back.col, a.col);
+    EXPECT_EQ(back.val, a.val);
+    Vector x(static_cast<size_t>(a.cols)), ax;
+    Random rng{17};
+    for (double& v : x) v = rng.Next();
+    op.Apply(x, &ax, 2);
+    for (int64_t r = 0; r < a.rows; ++r) {
+        double s = 0;
+        for (int64_t c = 0; c < a.cols; ++c)
+            s += dense[static_cast<size_t>(r * a.cols + c)] * x[static_cast<size_t>(c)];
+        EXPECT_NEAR(ax[static_cast<size_t>(r)], s, 1e-14);
+    }
+}
+
 TEST(Sparse, StackRowsAndColumns) {
     std::vector<double> d1, d2;
     const CsrMatrix a = RandomMatrix(4, 6, 2, 1, &d1), b = RandomMatrix(3, 6, 2, 2, &d2);
