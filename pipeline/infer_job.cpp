@@ -10,12 +10,14 @@
 #include <cmath>
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
 
 #include "base/atomic_file.h"
 #include "base/input_error.h"
 #include "base/matrix_market.h"
+#include "base/parallel.h"
 #include "infer/env_map.h"
 #include "infer/pem_file.h"
 #include "pipeline/display_target.h"
@@ -429,6 +431,14 @@ MapReport SolveMap(const std::vector<MapInput>& inputs, const InferJobOptions& o
 
 // The geometry of the samples in a solve ---------------------------------------------------
 
+// The traced images of one sample's view of a lens group, read once for every tessellation of
+// that view.
+struct ViewImages {
+    trace::FloatImage cov[2];  // per term: b_τ's samples (alpha = coverage)
+    trace::FloatImage frame;   // the traced two-term frame (what the display shows)
+    trace::FloatImage fg[2];   // per term: F·G (pixels)
+};
+
 // One sample's view of a lens group: vertex paths, draw order, projection and the traced
 // images of each term.
 struct ViewGeometry {
@@ -438,10 +448,8 @@ struct ViewGeometry {
     std::vector<uint32_t> order;
     glm::mat4 vp{1.0f};
     double weight = 1.0;
-    bool own = false;          // the sample's view at the maps' t (MapInput::own)
-    trace::FloatImage cov[2];  // per term: b_τ's samples (alpha = coverage)
-    trace::FloatImage frame;   // the traced two-term frame (what the display shows)
-    trace::FloatImage fg[2];   // per term: F·G (pixels)
+    bool own = false;  // the sample's view at the maps' t (MapInput::own)
+    std::shared_ptr<const ViewImages> images;
     std::vector<runtime::ExitRay> exits[2];
 };
 
@@ -476,8 +484,30 @@ struct Context {
     }
 };
 
+// The images of view u, the files decoded in parallel.
+std::shared_ptr<const ViewImages> ReadViewImages(const Context& c, int u,
+                                                 const runtime::LensGroupEm& g) {
+    auto images = std::make_shared<ViewImages>();
+    base::ParallelFor(1 + 2 * g.Terms(), c.opt.threads, [&](int k) {
+        if (k == 0) {
+            images->frame = ReadFrameImage(c.tm, u, "greedy");
+            return;
+        }
+        const int term = (k - 1) / 2;
+        const std::string tn = runtime::TermName(term);
+        if ((k - 1) % 2 == 0)
+            images->cov[term] = ReadGroupSamples(c.tm, u, g.index, "b_" + tn);
+        else
+            images->fg[term] = ReadGroupImage(c.tm, u, g.index, "FG_" + tn);
+    });
+    return images;
+}
+
+// View u of group g tessellated at tessT; `images` when they are already read (the same view at
+// another t), else read here.
 ViewGeometry SampleGeometry(const Context& c, int u, const runtime::LensGroupEm& g, double weight,
-                            SampleReport* sample, double tessT) {
+                            SampleReport* sample, double tessT,
+                            std::shared_ptr<const ViewImages> images = nullptr) {
     const int group = g.index, terms = g.Terms();
     const auto t0 = Clock::now();
     ViewGeometry vg;
@@ -494,13 +524,9 @@ ViewGeometry SampleGeometry(const Context& c, int u, const runtime::LensGroupEm&
     vg.weight = weight;
     sample->pathSeconds += Since(t0);
     sample->vertexRays += vg.lp.counts.Total();
-    vg.frame = ReadFrameImage(c.tm, u, "greedy");
-    for (int term = 0; term < terms; ++term) {
-        const std::string tn = runtime::TermName(term);
-        vg.cov[term] = ReadGroupSamples(c.tm, u, group, "b_" + tn);
-        vg.fg[term] = ReadGroupImage(c.tm, u, group, "FG_" + tn);
+    vg.images = images ? std::move(images) : ReadViewImages(c, u, g);
+    for (int term = 0; term < terms; ++term)
         vg.exits[term] = runtime::TermExits(vg.lp.tess.paths, term);
-    }
     // The paths themselves (each vertex's events, several hundred bytes a vertex, GBs at t = 1)
     // are not read again: their memory goes to the rendering matrices.
     std::vector<std::optional<trace::VertexPaths>>().swap(vg.lp.tess.paths);
@@ -516,7 +542,8 @@ std::vector<ViewGeometry> SolveGeometry(const Context& c, int v, const runtime::
     geo[0].own = true;
     sample->triangles += geo[0].lp.tess.triangles.size();
     for (double t : c.opt.alsoTessT)  // the same view drawn at another t: not its own rows
-        if (t != c.opt.tessT) geo.push_back(SampleGeometry(c, v, g, kAlsoTessWeight, sample, t));
+        if (t != c.opt.tessT)
+            geo.push_back(SampleGeometry(c, v, g, kAlsoTessWeight, sample, t, geo[0].images));
     for (int u = v - c.opt.neighbours; u <= v + c.opt.neighbours; ++u)
         if (u != v && u >= 0 && u < static_cast<int>(c.cameras.size()))
             geo.push_back(SampleGeometry(c, u, g, c.opt.neighbourWeight, sample, c.opt.tessT));
@@ -545,9 +572,9 @@ std::vector<MapInput> Observations(const InferJobOptions& opt, const std::vector
         for (size_t k = 0; k < geo.size(); ++k) {
             const ViewGeometry& vg = geo[k];
             MapInput in{images[static_cast<size_t>(term)][k],
-                        &vg.cov[term],
-                        &vg.frame,
-                        &vg.fg[term],
+                        &vg.images->cov[term],
+                        &vg.images->frame,
+                        &vg.images->fg[term],
                         {},
                         {},
                         vg.weight,
@@ -586,13 +613,25 @@ void SolveLayerMaps(Context& c, int v, const runtime::LensGroupEm& g,
             ++c.mapsDone;
             continue;
         }
-        std::vector<trace::FloatImage> owned;
-        owned.reserve(geo.size() * 2);
+        // The layer's image per term and view (each file once, decoded in parallel), then the
+        // image of every geometry's view.
+        std::vector<int> views;
+        for (const ViewGeometry& vg : geo)
+            if (std::find(views.begin(), views.end(), vg.view) == views.end())
+                views.push_back(vg.view);
+        const auto n = static_cast<int>(views.size());
+        std::vector<trace::FloatImage> owned(static_cast<size_t>(g.Terms() * n));
+        base::ParallelFor(g.Terms() * n, c.opt.threads, [&](int k) {
+            owned[static_cast<size_t>(k)] =
+                ReadGroupSamples(c.tm, views[static_cast<size_t>(k % n)], g.index,
+                                 LayerImageName(static_cast<int>(l), k / n));
+        });
         std::vector<std::vector<const trace::FloatImage*>> images(2);
         for (int t = 0; t < g.Terms(); ++t)
-            for (const ViewGeometry& vg : geo)
-                images[static_cast<size_t>(t)].push_back(&owned.emplace_back(ReadGroupSamples(
-                    c.tm, vg.view, g.index, LayerImageName(static_cast<int>(l), t))));
+            for (const ViewGeometry& vg : geo) {
+                const auto at = std::find(views.begin(), views.end(), vg.view) - views.begin();
+                images[static_cast<size_t>(t)].push_back(&owned[static_cast<size_t>(t * n + at)]);
+            }
         const runtime::DirectImages* direct = c.Direct(g);
         Solve(c, Observations(c.opt, geo, g.Terms(), images, g.layers[l].shell, g.emOrigin), odir,
               Report(v, g, static_cast<int>(l), term, LayerMapName(static_cast<int>(l))),
@@ -601,7 +640,8 @@ void SolveLayerMaps(Context& c, int v, const runtime::LensGroupEm& g,
     if (!c.opt.single) return;
     std::vector<std::vector<const trace::FloatImage*>> images(2);
     for (int t = 0; t < g.Terms(); ++t)
-        for (const ViewGeometry& vg : geo) images[static_cast<size_t>(t)].push_back(&vg.cov[t]);
+        for (const ViewGeometry& vg : geo)
+            images[static_cast<size_t>(t)].push_back(&vg.images->cov[t]);
     const runtime::DirectImages* direct = c.Direct(g);
     Solve(c, Observations(c.opt, geo, g.Terms(), images, runtime::SingleLayerShell(g), g.emOrigin),
           odir, Report(v, g, 0, term, "single"), direct ? &direct->levels.back() : nullptr);
@@ -612,10 +652,13 @@ void SolveLayerMaps(Context& c, int v, const runtime::LensGroupEm& g,
 void SolvePemMaps(Context& c, int v, const runtime::LensGroupEm& g, const std::string& odir) {
     const runtime::MirrorGeometry m =
         runtime::MakeMirrorGeometry(c.scene, g.index, c.cameras[static_cast<size_t>(v)]);
-    const trace::FloatImage distant = ReadGroupSamples(c.tm, v, g.index, "distant");
-    const trace::FloatImage local = ReadGroupSamples(c.tm, v, g.index, "local");
-    const trace::FloatImage frame = ReadFrameImage(c.tm, v, "greedy");
-    const trace::FloatImage fresnel = ReadGroupImage(c.tm, v, g.index, "fresnel1");
+    trace::FloatImage distant, local, frame, fresnel;  // the files decoded in parallel
+    base::ParallelFor(4, c.opt.threads, [&](int k) {
+        if (k == 0) distant = ReadGroupSamples(c.tm, v, g.index, "distant");
+        if (k == 1) local = ReadGroupSamples(c.tm, v, g.index, "local");
+        if (k == 2) frame = ReadFrameImage(c.tm, v, "greedy");
+        if (k == 3) fresnel = ReadGroupImage(c.tm, v, g.index, "fresnel1");
+    });
     const std::vector<uint8_t> hull = runtime::HullTriangles(m.mesh);
     const bool convex = runtime::AllOnHull(hull);
     if (convex) {
