@@ -244,15 +244,11 @@ std::vector<double> LevelsAccessed(const std::vector<MapInput>& inputs, int w, i
             UnknownFrame(k * w, k * h, maxRes, sampler, opt.parameterization, in);
         const raster::TexelIndexer index(f.textures);
         const std::vector<uint32_t> cells = CoveredCells(in);
-        const raster::RenderingMatrix a =
-            raster::BuildRenderingMatrix(raster::PreparedFrame(f), ro, &cells);
+        const std::vector<uint32_t> finestOf =  // levels are numbered finest first
+            raster::FinestTexels(raster::PreparedFrame(f), ro, &cells);
         share.resize(f.textures[0].levels.size(), 0.0);
-        for (size_t c = 0; c < cells.size(); ++c) {  // the red row of each subpixel
-            const auto first = static_cast<size_t>(a.rowPtr[4 * c]);
-            const auto last = static_cast<size_t>(a.rowPtr[4 * c + 1]);
-            if (first == last) continue;
-            const uint32_t finest =  // levels are numbered finest first
-                *std::min_element(a.col.begin() + first, a.col.begin() + last) / 4;
+        for (const uint32_t finest : finestOf) {  // each subpixel's
+            if (finest == raster::kNoTexel) continue;
             int chart = 0;  // the texture of the map it reads (a two-image layout has two)
             while (chart + 1 < static_cast<int>(f.textures.size()) &&
                    index.LevelBase(chart + 1, 0) <= finest)

@@ -17,6 +17,7 @@
 #include <stdexcept>
 #include <string>
 #include <type_traits>
+#include <utility>
 
 #include "base/parallel.h"
 #include "base/worker_pool.h"
@@ -356,6 +357,15 @@ void FinishResult(const Frame& frame, const RenderOptions& options, RenderResult
             UnormFromFloat(r->imageF.rgba[i], options.rounding == UnormRounding::HalfEven);
 }
 
+// The pixels of MatrixRows band b: GL rows [y0, y1) are the buffer's rows [height - y1,
+// height - y0).
+std::pair<size_t, size_t> BandPixels(int width, int height, int b) {
+    const int y0 = b * MatrixRows::kBandRows;
+    const int y1 = std::min(y0 + MatrixRows::kBandRows, height);
+    return {static_cast<size_t>(height - y1) * static_cast<size_t>(width),
+            static_cast<size_t>(height - y0) * static_cast<size_t>(width)};
+}
+
 // CSR from the logged taps of the kept pixels (the i-th kept pixel is pixelOf(i), kept pixels
 // increasing; keptFrom(p) the first kept index whose pixel is >= p): per band, its log grouped by
 // pixel (MatrixRows::GroupBand), each kept pixel's taps sorted by texel, then per channel c the
@@ -366,13 +376,7 @@ void RowsToCsr(MatrixRows* rows, int width, int height, size_t kept, const Pixel
                const KeptFrom& keptFrom, RenderingMatrix* m, int threads) {
     const auto byTexel = [](const MatrixTap& a, const MatrixTap& b) { return a.texel < b.texel; };
     const int bands = static_cast<int>(rows->Bands());
-    // The pixels of band b: GL rows [y0, y1) are the buffer's rows [height - y1, height - y0).
-    const auto bandPixels = [&](int b) {
-        const int y0 = b * MatrixRows::kBandRows;
-        const int y1 = std::min(y0 + MatrixRows::kBandRows, height);
-        return std::pair{static_cast<size_t>(height - y1) * static_cast<size_t>(width),
-                         static_cast<size_t>(height - y0) * static_cast<size_t>(width)};
-    };
+    const auto bandPixels = [&](int b) { return BandPixels(width, height, b); };
     // Step 1: each band's taps grouped by pixel, each kept pixel's sorted, its texels counted.
     std::vector<uint32_t> distinct(kept, 0);
     std::vector<std::vector<uint32_t>> first(static_cast<size_t>(bands));
@@ -490,6 +494,58 @@ void CropToDrawnBox(const Frame& frame, RenderResult* r) {
     if (!r->depth.empty()) r->depth = crop(r->depth, 1);
 }
 
+// Matrix mode's checks: linear blends, no scissor box, kept pixels increasing in the frame.
+void CheckMatrixFrame(const Frame& frame, const std::vector<uint32_t>* pixels, const char* what) {
+    if (frame.scissor)
+        throw std::invalid_argument(std::string(what) + ": a scissored frame (list the pixels)");
+    for (size_t i = 0; i < frame.passes.size(); ++i) {
+        const Pass& p = frame.passes[i];
+        if (p.blend.enabled && !(p.blend == BlendState::Additive()))
+            throw std::invalid_argument("pass " + std::to_string(i) +
+                                        ": blend is not linear in the texels (use none or add)");
+    }
+    const size_t n = static_cast<size_t>(frame.width) * frame.height;
+    if (!pixels) return;
+    for (size_t i = 0; i < pixels->size(); ++i)
+        if ((*pixels)[i] >= n || (i > 0 && (*pixels)[i] <= (*pixels)[i - 1]))
+            throw std::invalid_argument(std::string(what) +
+                                        ": kept pixels not increasing in the frame");
+}
+
+// The draw of matrix mode: every pixel's offsets and fragment counts into *m (sized here), its
+// taps into *rows, the rendered picture into *r (softpipe: drawn after).
+void DrawMatrixRows(const PreparedFrame& prepared, const RenderOptions& options, RenderingMatrix* m,
+                    MatrixRows* rows, RenderResult* r) {
+    const Frame& frame = prepared.frame();
+    const size_t n = static_cast<size_t>(frame.width) * frame.height;
+    m->offset.assign(4 * n, 0.0);
+    m->fragments.assign(n, 0);
+    for (size_t i = 0; i < n; ++i)
+        for (int c = 0; c < 4; ++c)
+            m->offset[4 * i + c] =
+                FloatTarget(frame, options)
+                    ? static_cast<double>(static_cast<float>(frame.clear[c]) / 255.0f)
+                    : frame.clear[c] / 255.0;
+    if (options.profile == Profile::Softpipe) {
+        RequireRgba8(frame, "softpipe");
+        SoftpipeMatrixRows(prepared, m, rows);
+        *r = Render(prepared, options);
+    } else {
+        FragmentTarget tg = ClearedTarget(prepared, options, r);
+        tg.matrix = m;
+        tg.rows = rows;
+        DrawFrame(tg);
+        FinishResult(frame, options, r);
+    }
+}
+
+// The first kept index whose pixel is >= p (kept pixels increasing; null: every pixel).
+size_t KeptFrom(const std::vector<uint32_t>* pixels, size_t p) {
+    return pixels ? static_cast<size_t>(std::lower_bound(pixels->begin(), pixels->end(), p) -
+                                        pixels->begin())
+                  : p;
+}
+
 }  // namespace
 
 std::shared_ptr<const PreparedTexture> PrepareTexture(const Texture& t) {
@@ -561,54 +617,18 @@ std::vector<RenderResult> RenderFrames(const std::vector<const PreparedFrame*>& 
 RenderingMatrix BuildRenderingMatrix(const PreparedFrame& prepared, const RenderOptions& options,
                                      const std::vector<uint32_t>* pixels) {
     const Frame& frame = prepared.frame();
-    if (frame.scissor)
-        throw std::invalid_argument("BuildRenderingMatrix: a scissored frame (list the pixels)");
-    for (size_t i = 0; i < frame.passes.size(); ++i) {
-        const Pass& p = frame.passes[i];
-        if (p.blend.enabled && !(p.blend == BlendState::Additive()))
-            throw std::invalid_argument("pass " + std::to_string(i) +
-                                        ": blend is not linear in the texels (use none or add)");
-    }
+    CheckMatrixFrame(frame, pixels, "BuildRenderingMatrix");
     const size_t n = static_cast<size_t>(frame.width) * frame.height;
-    const std::vector<uint32_t> none;
-    const std::vector<uint32_t>& list = pixels ? *pixels : none;
-    for (size_t i = 0; i < list.size(); ++i)
-        if (list[i] >= n || (i > 0 && list[i] <= list[i - 1]))
-            throw std::invalid_argument(
-                "BuildRenderingMatrix: kept pixels not increasing in the frame");
-    const size_t kept = pixels ? list.size() : n;
-    const auto pixelOf = [&](size_t i) { return pixels ? size_t{list[i]} : i; };
+    const size_t kept = pixels ? pixels->size() : n;
+    const auto pixelOf = [&](size_t i) { return pixels ? size_t{(*pixels)[i]} : i; };
     RenderingMatrix m;
     m.rows = static_cast<int64_t>(4 * kept);
     m.cols = 4 * static_cast<int64_t>(prepared.indexer().TotalTexels());
-    m.offset.assign(4 * n, 0.0);
-    m.fragments.assign(n, 0);
-    for (size_t i = 0; i < n; ++i)
-        for (int c = 0; c < 4; ++c)
-            m.offset[4 * i + c] =
-                FloatTarget(frame, options)
-                    ? static_cast<double>(static_cast<float>(frame.clear[c]) / 255.0f)
-                    : frame.clear[c] / 255.0;
     MatrixRows rows(n, frame.height);
-    // The rows and the rendered picture in one draw (softpipe: the picture drawn after).
     RenderResult r;
-    if (options.profile == Profile::Softpipe) {
-        RequireRgba8(frame, "softpipe");
-        SoftpipeMatrixRows(prepared, &m, &rows);
-        r = Render(prepared, options);
-    } else {
-        FragmentTarget tg = ClearedTarget(prepared, options, &r);
-        tg.matrix = &m;
-        tg.rows = &rows;
-        DrawFrame(tg);
-        FinishResult(frame, options, &r);
-    }
+    DrawMatrixRows(prepared, options, &m, &rows, &r);
     // The kept pixels' rows, offsets, fragment counts and rendered values.
-    const auto keptFrom = [&](size_t p) {
-        return pixels ? static_cast<size_t>(std::lower_bound(list.begin(), list.end(), p) -
-                                            list.begin())
-                      : p;
-    };
+    const auto keptFrom = [&](size_t p) { return KeptFrom(pixels, p); };
     RowsToCsr(&rows, frame.width, frame.height, kept, pixelOf, keptFrom, &m, options.threads);
     KeepPixels(kept, pixelOf, &m);
     m.rendered.resize(4 * kept);
@@ -620,6 +640,34 @@ RenderingMatrix BuildRenderingMatrix(const PreparedFrame& prepared, const Render
                                         : r.image8.rgba[at] / 255.0;
         }
     return m;
+}
+
+std::vector<uint32_t> FinestTexels(const PreparedFrame& prepared, const RenderOptions& options,
+                                   const std::vector<uint32_t>* pixels) {
+    const Frame& frame = prepared.frame();
+    CheckMatrixFrame(frame, pixels, "FinestTexels");
+    const size_t n = static_cast<size_t>(frame.width) * frame.height;
+    const size_t kept = pixels ? pixels->size() : n;
+    RenderingMatrix m;
+    MatrixRows rows(n, frame.height);
+    RenderResult r;
+    DrawMatrixRows(prepared, options, &m, &rows, &r);
+    // Per band: its taps grouped by pixel, the least texel of each kept pixel's.
+    std::vector<uint32_t> finest(kept, kNoTexel);
+    base::ParallelFor(static_cast<int>(rows.Bands()), options.threads, [&](int b) {
+        const auto [p0, p1] = BandPixels(frame.width, frame.height, b);
+        std::vector<uint32_t> first;
+        std::vector<MatrixTap> scratch;
+        rows.GroupBand(static_cast<size_t>(b), p0, p1, &first, &scratch);
+        const std::vector<MatrixTap>& log = rows.Log(static_cast<size_t>(b));
+        for (size_t i = KeptFrom(pixels, p0); i < KeptFrom(pixels, p1); ++i) {
+            const size_t p = (pixels ? size_t{(*pixels)[i]} : i) - p0;
+            for (uint32_t k = first[p]; k < first[p + 1]; ++k)
+                finest[i] = std::min(finest[i], log[k].texel);
+        }
+        std::vector<MatrixTap>().swap(rows.Log(static_cast<size_t>(b)));
+    });
+    return finest;
 }
 
 }  // namespace pem::raster

@@ -133,4 +133,11 @@ struct RenderingMatrix {
 RenderingMatrix BuildRenderingMatrix(const PreparedFrame& frame, const RenderOptions& options,
                                      const std::vector<uint32_t>* pixels = nullptr);
 
+// The least texel index (texel_index.h: finest level first) among the taps of each kept pixel's
+// rows, kNoTexel for a pixel without taps: which MIP level a pixel's finest tap reads, from the
+// same draw as BuildRenderingMatrix without forming the matrix (a test rendering).
+inline constexpr uint32_t kNoTexel = 0xFFFFFFFFu;
+std::vector<uint32_t> FinestTexels(const PreparedFrame& frame, const RenderOptions& options,
+                                   const std::vector<uint32_t>* pixels = nullptr);
+
 }  // namespace pem::raster

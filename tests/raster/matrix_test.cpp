@@ -282,6 +282,40 @@ uint64_t Bits(double v) {
 // bit for bit, in every profile (each frame in one of the three), an empty list keeps none, and in
 // the linear profile A x is the rendered frame there; a list not increasing inside the frame is
 // refused.
+// FinestTexels (the test rendering that sizes a map) gives each kept pixel the least texel of its
+// rows in the rendering matrix: the frames in every profile, every pixel or a sparse list.
+TEST(RenderingMatrix, FinestTexelsAreTheRowsLeastTexel) {
+    int checked = 0, withTaps = 0;
+    const std::vector<NamedCase> frames = LinearFrames();
+    const Profile profiles[] = {Profile::Linear, Profile::Llvmpipe, Profile::Softpipe};
+    for (size_t f = 0; f < frames.size(); ++f) {
+        const NamedCase& c = frames[f];
+        RenderOptions opt;
+        opt.profile = RgbaEightOnly(c.frame) ? profiles[f % 3] : profiles[f % 2];
+        opt.threads = 1 + static_cast<int>(f % 3);
+        const PreparedFrame pf(c.frame);
+        const auto n = static_cast<uint32_t>(c.frame.width * c.frame.height);
+        std::vector<uint32_t> pixels;
+        for (uint32_t p = 2; p < n; p += 5) pixels.push_back(p);
+        {  // every pixel, or (odd frames) a sparse list
+            const std::vector<uint32_t>* list = f % 2 ? &pixels : nullptr;
+            const RenderingMatrix a = BuildRenderingMatrix(pf, opt, list);
+            const std::vector<uint32_t> finest = FinestTexels(pf, opt, list);
+            ASSERT_EQ(finest.size() * 4, static_cast<size_t>(a.rows)) << c.name;
+            for (size_t i = 0; i < finest.size(); ++i) {
+                uint32_t least = kNoTexel;  // over the red row's columns 4 * texel
+                for (int64_t k = a.rowPtr[4 * i]; k < a.rowPtr[4 * i + 1]; ++k)
+                    least = std::min(least, a.col[static_cast<size_t>(k)] / 4);
+                ASSERT_EQ(finest[i], least) << c.name << " pixel " << i;
+                withTaps += least != kNoTexel;
+            }
+        }
+        ++checked;
+    }
+    EXPECT_GT(checked, 40);
+    EXPECT_GT(withTaps, 1000);
+}
+
 TEST(RenderingMatrix, KeptPixelsAreTheWholeFramesRows) {
     int checked = 0;
     const std::vector<NamedCase> frames = LinearFrames();
