@@ -288,17 +288,17 @@ TEST(RenderingMatrix, FinestTexelsAreTheRowsLeastTexel) {
     int checked = 0, withTaps = 0;
     const std::vector<NamedCase> frames = LinearFrames();
     const Profile profiles[] = {Profile::Linear, Profile::Llvmpipe, Profile::Softpipe};
-    for (size_t f = 0; f < frames.size(); ++f) {
+    for (size_t f = 0; f < frames.size(); f += 3) {  // a third of them: each profile, each form
         const NamedCase& c = frames[f];
         RenderOptions opt;
-        opt.profile = RgbaEightOnly(c.frame) ? profiles[f % 3] : profiles[f % 2];
-        opt.threads = 1 + static_cast<int>(f % 3);
+        opt.profile = RgbaEightOnly(c.frame) ? profiles[(f / 3) % 3] : profiles[(f / 3) % 2];
+        opt.threads = 1 + static_cast<int>((f / 3) % 4);
         const PreparedFrame pf(c.frame);
         const auto n = static_cast<uint32_t>(c.frame.width * c.frame.height);
         std::vector<uint32_t> pixels;
         for (uint32_t p = 2; p < n; p += 5) pixels.push_back(p);
         {  // every pixel, or (odd frames) a sparse list
-            const std::vector<uint32_t>* list = f % 2 ? &pixels : nullptr;
+            const std::vector<uint32_t>* list = (f / 3) % 2 ? &pixels : nullptr;
             const RenderingMatrix a = BuildRenderingMatrix(pf, opt, list);
             const std::vector<uint32_t> finest = FinestTexels(pf, opt, list);
             ASSERT_EQ(finest.size() * 4, static_cast<size_t>(a.rows)) << c.name;
@@ -312,7 +312,7 @@ TEST(RenderingMatrix, FinestTexelsAreTheRowsLeastTexel) {
         }
         ++checked;
     }
-    EXPECT_GT(checked, 40);
+    EXPECT_GT(checked, 13);
     EXPECT_GT(withTaps, 1000);
 }
 
