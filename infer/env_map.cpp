@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <span>
 #include <stdexcept>
 
 namespace pem::infer {
@@ -44,40 +45,43 @@ Vector SolutionFromEnvMap(const EnvMapF& map) {
     return x;
 }
 
-std::vector<raster::Texture> ToTextures8(const EnvMapF& map, const raster::SamplerState& sampler) {
+namespace {
+
+// The map's textures (one per chart; a cube: one), each level holding its chart's share of the
+// map's level converted by `convert` (the share's floats → the texel bytes).
+template <class Convert>
+std::vector<raster::Texture> Textures(const EnvMapF& map, const raster::SamplerState& sampler,
+                                      raster::TexelFormat format, const Convert& convert) {
     std::vector<raster::Texture> out(map.IsCube() ? 1 : static_cast<size_t>(map.charts));
     for (size_t c = 0; c < out.size(); ++c) {
         raster::Texture& t = out[c];
         t.kind = map.kind;
+        t.format = format;
         t.width = map.size;
         t.height = map.LevelHeight(0);
         t.sampler = sampler;
         for (const auto& level : map.levels) {
-            // Step: this chart's share of the level (a cube: all of it).
             const size_t n = level.size() / out.size();
-            std::vector<uint8_t> bytes(n);
-            for (size_t k = 0; k < n; ++k) bytes[k] = ToByte(level[c * n + k]);
-            t.levels.push_back(std::move(bytes));
+            t.levels.push_back(convert(std::span<const float>(level).subspan(c * n, n)));
         }
     }
     return out;
 }
 
+}  // namespace
+
+std::vector<raster::Texture> ToTextures8(const EnvMapF& map, const raster::SamplerState& sampler) {
+    return Textures(map, sampler, raster::TexelFormat::Rgba8, [](std::span<const float> share) {
+        std::vector<uint8_t> bytes(share.size());
+        for (size_t k = 0; k < share.size(); ++k) bytes[k] = ToByte(share[k]);
+        return bytes;
+    });
+}
+
 std::vector<raster::Texture> ToTextures(const EnvMapF& map, const raster::SamplerState& sampler,
                                         raster::TexelFormat format) {
-    std::vector<raster::Texture> out = ToTextures8(map, sampler);
-    if (format == raster::TexelFormat::Rgba8) return out;
-    for (size_t c = 0; c < out.size(); ++c) {
-        out[c].format = format;
-        for (size_t l = 0; l < map.levels.size(); ++l) {
-            // Step: this chart's share of the level, as floats.
-            const size_t n = map.levels[l].size() / out.size();
-            out[c].levels[l] = raster::FloatBytes(
-                {map.levels[l].begin() + static_cast<std::ptrdiff_t>(c * n),
-                 map.levels[l].begin() + static_cast<std::ptrdiff_t>((c + 1) * n)});
-        }
-    }
-    return out;
+    if (format == raster::TexelFormat::Rgba8) return ToTextures8(map, sampler);
+    return Textures(map, sampler, format, raster::FloatBytes);
 }
 
 std::vector<raster::Texture> Texture8FromSolution(const Vector& x, const TexelLayout& layout,

@@ -47,7 +47,7 @@ std::vector<float> FloatsFromBytes(const std::vector<uint8_t>& bytes) {
     return f;
 }
 
-std::vector<uint8_t> FloatBytes(const std::vector<float>& values) {
+std::vector<uint8_t> FloatBytes(std::span<const float> values) {
     static_assert(std::endian::native == std::endian::little);
     std::vector<uint8_t> bytes(4 * values.size());
     std::memcpy(bytes.data(), values.data(), bytes.size());

@@ -21,6 +21,7 @@
 #include <cstdint>
 #include <glm/glm.hpp>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -224,6 +225,6 @@ double TexelValue(const Texture& texture, int level, size_t i);
 // Floats from their little-endian bytes (an RGBA32F level), and back (a level, or the bytes an
 // RGBA32F colour buffer's identity is computed over).
 std::vector<float> FloatsFromBytes(const std::vector<uint8_t>& bytes);
-std::vector<uint8_t> FloatBytes(const std::vector<float>& values);
+std::vector<uint8_t> FloatBytes(std::span<const float> values);
 
 }  // namespace pem::raster
