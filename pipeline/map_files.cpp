@@ -4,6 +4,7 @@
 
 #include <algorithm>
 
+#include "base/parallel.h"
 #include "base/png_io.h"
 #include "infer/pem_file.h"
 
@@ -42,8 +43,14 @@ void WriteTexturePng(std::span<const raster::Texture> textures, const std::strin
 
 void WriteMapImages(const infer::EnvMapF& map, std::span<const raster::Texture> textures,
                     const std::string& stem, int threads) {
-    infer::WriteEnvMapExr(map, stem + ".exr", threads);
-    WriteTexturePng(textures, stem + ".png");
+    // The two files at once (the PNG's deflate on one thread beside the EXR's tiles); an error
+    // is the EXR's first, as when they were written one after the other.
+    base::ParallelFor(2, std::min(threads, 2), [&](int file) {
+        if (file == 0)
+            infer::WriteEnvMapExr(map, stem + ".exr", threads);
+        else
+            WriteTexturePng(textures, stem + ".png");
+    });
 }
 
 }  // namespace pem::pipeline
