@@ -6,6 +6,8 @@
 #include <array>
 #include <span>
 #include <stdexcept>
+#include <utility>
+#include <vector>
 
 namespace pem::infer {
 namespace {
@@ -126,6 +128,51 @@ CsrMatrix ActiveEmpty(const std::vector<uint32_t>& active) {
     return m;
 }
 
+// The neighbour pairs of a walk over texels in increasing order, normalised (smaller texel
+// first), sorted and unique — what sorting them all gives, without sorting them all: the pairs
+// led by the walking texel come in order of their first texel already (the few of one texel
+// are sorted among themselves); the others (a seam reaching back to a smaller texel) are sorted
+// apart and merged in.
+class PairWalk {
+  public:
+    using Pair = std::pair<uint32_t, uint32_t>;
+    // A pair of the walking texel a (a >= every earlier walking texel).
+    void Add(uint32_t a, uint32_t b) {
+        if (a < b) {
+            if (!ahead_.empty() && ahead_.back().first > a) inOrder_ = false;
+            ahead_.emplace_back(a, b);
+        } else {
+            behind_.emplace_back(b, a);
+        }
+    }
+    std::vector<Pair> Take() {
+        // Step 1: each run of one first texel sorted (a walk out of order: all of it).
+        if (!inOrder_) {
+            std::sort(ahead_.begin(), ahead_.end());
+        } else {
+            for (size_t r = 0; r < ahead_.size();) {
+                size_t e = r + 1;
+                while (e < ahead_.size() && ahead_[e].first == ahead_[r].first) ++e;
+                std::sort(ahead_.begin() + static_cast<std::ptrdiff_t>(r),
+                          ahead_.begin() + static_cast<std::ptrdiff_t>(e));
+                r = e;
+            }
+        }
+        // Step 2: the pairs reaching back, sorted and merged in; duplicates dropped.
+        std::sort(behind_.begin(), behind_.end());
+        std::vector<Pair> pairs(ahead_.size() + behind_.size());
+        std::merge(ahead_.begin(), ahead_.end(), behind_.begin(), behind_.end(), pairs.begin());
+        pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+        ahead_.clear(), behind_.clear(), inOrder_ = true;
+        return pairs;
+    }
+    void Reserve(size_t n) { ahead_.reserve(n); }
+
+  private:
+    std::vector<Pair> ahead_, behind_;
+    bool inOrder_ = true;
+};
+
 }  // namespace
 
 uint32_t TexelLayout::LevelBase(int level) const {
@@ -207,8 +254,8 @@ FaceTexel Neighbour(const FaceTexel& t, Edge e, int n) {
 
 std::vector<std::pair<uint32_t, uint32_t>> NeighbourPairs(const TexelLayout& layout, int level) {
     const int w = layout.LevelSize(level), h = layout.LevelHeight(level);
-    std::vector<std::pair<uint32_t, uint32_t>> pairs;
-    pairs.reserve(static_cast<size_t>(2 * layout.Faces() * w * h));
+    PairWalk walk;
+    walk.Reserve(static_cast<size_t>(2 * layout.Faces() * w * h));
     // Right and down neighbour of every texel inside a face. Across seams right/down alone is
     // not enough: some edges are left or up from both faces (+Y's left edge is -X's top row),
     // others right or down from both (-Y's and -Z's bottom rows). So every texel on a face
@@ -220,11 +267,9 @@ std::vector<std::pair<uint32_t, uint32_t>> NeighbourPairs(const TexelLayout& lay
                     if ((e == Edge::Left && i > 0) || (e == Edge::Up && j > 0)) continue;
                     const uint32_t a = layout.Texel(level, f, i, j);
                     const uint32_t b = layout.NeighbourTexel(level, {f, i, j}, e);
-                    if (a != b) pairs.emplace_back(std::min(a, b), std::max(a, b));
+                    if (a != b) walk.Add(a, b);
                 }
-    std::sort(pairs.begin(), pairs.end());
-    pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
-    return pairs;
+    return walk.Take();
 }
 
 CsrMatrix SmoothnessRows(const TexelLayout& layout, int64_t cols) {
@@ -259,24 +304,22 @@ CsrMatrix SmoothnessRows(const TexelLayout& layout, const std::vector<uint32_t>&
     CsrMatrix m = ActiveEmpty(active);
     auto on = [&](uint32_t t) { return index[t] >= 0; };
     size_t k = 0;  // walks `active` level by level
-    std::vector<std::pair<uint32_t, uint32_t>> pairs;
+    PairWalk walk;
     for (int l = 0; l < layout.levels; ++l) {
         // NeighbourPairs' rule from every active texel of the level; both ends must be active.
         const uint32_t base = layout.LevelBase(l), end = layout.LevelBase(l + 1);
         const TexelLayout local = Local(layout);
-        pairs.clear();
         for (; k < active.size() && active[k] < end; ++k) {
             const uint32_t a = active[k];
             const FaceTexel t = layout.Locate(l, a - base);
             for (Edge e : {Edge::Right, Edge::Down, Edge::Left, Edge::Up}) {
                 if ((e == Edge::Left && t.i > 0) || (e == Edge::Up && t.j > 0)) continue;
                 const uint32_t b = local.NeighbourTexel(l, t, e);
-                if (a != b && on(b)) pairs.emplace_back(std::min(a, b), std::max(a, b));
+                if (a != b && on(b)) walk.Add(a, b);
             }
         }
-        std::sort(pairs.begin(), pairs.end());
-        pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
-        for (const auto& [a, b] : pairs) AddActiveRows(std::array{a, b}, kDifference, index, &m);
+        for (const auto& [a, b] : walk.Take())
+            AddActiveRows(std::array{a, b}, kDifference, index, &m);
     }
     return m;
 }

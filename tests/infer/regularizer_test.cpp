@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
 #include <glm/glm.hpp>
 #include <map>
@@ -38,6 +39,32 @@ TEST(Regularizer, EveryTexelHasFourNeighbours) {
         ASSERT_EQ(degree.size(), static_cast<size_t>(6 * n * n));
         for (const auto& [t, d] : degree) EXPECT_EQ(d, 4) << "n " << n << " texel " << t;
     }
+}
+
+// The pairs as a set built the plain way (every texel, all four neighbours, each pair once),
+// for cubes of several levels and first texels: NeighbourPairs lists exactly them, in order.
+TEST(Regularizer, NeighbourPairsAreTheSortedSetOfAdjacentTexels) {
+    for (uint32_t first : {0u, 37u})
+        for (int n : {1, 2, 8, 32}) {
+            const TexelLayout layout{
+                first, n, std::min(4, static_cast<int>(std::bit_width(static_cast<unsigned>(n))))};
+            for (int l = 0; l < layout.levels; ++l) {
+                const int m = layout.LevelSize(l);
+                std::set<std::pair<uint32_t, uint32_t>> expected;
+                for (int f = 0; f < 6; ++f)
+                    for (int j = 0; j < m; ++j)
+                        for (int i = 0; i < m; ++i)
+                            for (Edge e : {Edge::Left, Edge::Right, Edge::Up, Edge::Down}) {
+                                const FaceTexel nb = Neighbour({f, i, j}, e, m);
+                                const uint32_t a = layout.Texel(l, f, i, j);
+                                const uint32_t b = layout.Texel(l, nb.face, nb.i, nb.j);
+                                if (a != b) expected.emplace(std::min(a, b), std::max(a, b));
+                            }
+                using Pairs = std::vector<std::pair<uint32_t, uint32_t>>;
+                EXPECT_EQ(NeighbourPairs(layout, l), Pairs(expected.begin(), expected.end()))
+                    << "n " << n << " level " << l << " first " << first;
+            }
+        }
 }
 
 TEST(Regularizer, NeighboursAreAdjacentDirections) {
