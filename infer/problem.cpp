@@ -249,20 +249,29 @@ LinearSystem BuildSystem(raster::RenderingMatrix&& matrix, const raster::Frame& 
     if (weights.smooth > 0) blocks.push_back({&smooth, std::sqrt(weights.smooth), nullptr});
     if (weights.pyramid > 0) blocks.push_back({&pyramid, std::sqrt(weights.pyramid), nullptr});
     if (weights.prior > 0) blocks.push_back({&prior, std::sqrt(weights.prior), nullptr});
-    CsrMatrix k = StackRows(std::move(img.a), 1.0, &img.sqrtWeight, blocks);
+    // K = [image; regularizers], held as its quad form when it has one (read straight from the
+    // blocks: the stack itself, four times that size, is never formed).
+    const int64_t priorRows = prior.rows;
+    CsrMatrix quads;
+    if (StackedQuadForm(img.a, 1.0, &img.sqrtWeight, blocks, &quads)) {
+        const int64_t rows = kChannels * quads.rows;
+        img.a = CsrMatrix{}, smooth = CsrMatrix{}, pyramid = CsrMatrix{}, prior = CsrMatrix{};
+        sys.k = SparseOperator::FromQuadForm(rows, cols, std::move(quads));
+    } else {
+        sys.k = SparseOperator(StackRows(std::move(img.a), 1.0, &img.sqrtWeight, blocks));
+    }
 
     // Right-hand side in the same row order.
-    sys.h.assign(static_cast<size_t>(k.rows), 0.0);
+    sys.h.assign(static_cast<size_t>(sys.k.Rows()), 0.0);
     for (int64_t r = 0; r < sys.imageRows; ++r)
         sys.h[static_cast<size_t>(r)] =
             img.sqrtWeight[static_cast<size_t>(r)] * img.rhs[static_cast<size_t>(r)];
     if (weights.prior > 0) {
-        const int64_t first = k.rows - prior.rows;
-        for (int64_t r = 0; r < prior.rows; ++r)
+        const int64_t first = sys.k.Rows() - priorRows;
+        for (int64_t r = 0; r < priorRows; ++r)
             sys.h[static_cast<size_t>(first + r)] =
                 std::sqrt(weights.prior) * sys.priorValue[static_cast<size_t>(r % kChannels)];
     }
-    sys.k = SparseOperator(std::move(k));
     return sys;
 }
 

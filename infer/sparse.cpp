@@ -67,21 +67,86 @@ CsrMatrix StackRows(const std::vector<RowBlock>& blocks) {
                      std::vector<RowBlock>(blocks.begin() + 1, blocks.end()));
 }
 
-CsrMatrix StackRows(CsrMatrix&& first, double weight, const Vector* rowWeight,
-                    const std::vector<RowBlock>& rest) {
-    CsrMatrix m = std::move(first);
+namespace {
+
+// The rows and entries of a stack, its blocks checked (the same column count, one weight per
+// row where given).
+void StackShape(const CsrMatrix& first, const Vector* rowWeight, const std::vector<RowBlock>& rest,
+                size_t* rows, size_t* entries) {
     const auto checkWeights = [](const CsrMatrix& b, const Vector* w) {
         if (w && static_cast<int64_t>(w->size()) != b.rows)
             throw std::invalid_argument("StackRows: row weights");
     };
-    checkWeights(m, rowWeight);
-    size_t rows = static_cast<size_t>(m.rows), entries = m.col.size();
+    checkWeights(first, rowWeight);
+    *rows = static_cast<size_t>(first.rows), *entries = first.col.size();
     for (const RowBlock& b : rest) {
-        if (b.matrix->cols != m.cols)
+        if (b.matrix->cols != first.cols)
             throw std::invalid_argument("StackRows: column counts differ");
         checkWeights(*b.matrix, b.rowWeight);
-        rows += static_cast<size_t>(b.matrix->rows), entries += b.matrix->col.size();
+        *rows += static_cast<size_t>(b.matrix->rows), *entries += b.matrix->col.size();
     }
+}
+
+// Appends the quads of block b (each row r's values scaled by weight * rowWeight[r], as
+// StackRows scales them) to q from quad row `row` and entry `at` on; false where QuadForm would
+// refuse the stacked rows (or the block's rows are not whole quads).
+bool AppendQuads(const CsrMatrix& b, double weight, const Vector* rowWeight, CsrMatrix* q,
+                 size_t* row, size_t* at) {
+    if (b.rows % kChannels != 0) return false;
+    const auto w = [&](size_t r) { return weight * (rowWeight ? (*rowWeight)[r] : 1.0); };
+    for (int64_t p = 0; p < b.rows / kChannels; ++p) {
+        // Rows 4p + c: equal lengths, columns 4t + c, equal scaled values.
+        const size_t r0 = static_cast<size_t>(kChannels * p);
+        const int64_t b0 = b.rowPtr[r0], len = b.rowPtr[r0 + 1] - b0;
+        const double w0 = w(r0);
+        for (size_t c = 1; c < kChannels; ++c) {
+            const int64_t bc = b.rowPtr[r0 + c];
+            if (b.rowPtr[r0 + c + 1] - bc != len) return false;
+            const double wc = w(r0 + c);
+            for (int64_t k = 0; k < len; ++k) {
+                const size_t e0 = static_cast<size_t>(b0 + k), ec = static_cast<size_t>(bc + k);
+                if (b.col[ec] != b.col[e0] + c || wc * b.val[ec] != w0 * b.val[e0]) return false;
+            }
+        }
+        if (*at + static_cast<size_t>(len) > q->col.size()) return false;
+        for (int64_t k = 0; k < len; ++k) {
+            const size_t e0 = static_cast<size_t>(b0 + k);
+            if (b.col[e0] % kChannels != 0) return false;
+            q->col[*at] = b.col[e0] / kChannels;
+            q->val[(*at)++] = w0 * b.val[e0];
+        }
+        q->rowPtr[++*row] = static_cast<int64_t>(*at);
+    }
+    return true;
+}
+
+}  // namespace
+
+bool StackedQuadForm(const CsrMatrix& first, double weight, const Vector* rowWeight,
+                     const std::vector<RowBlock>& rest, CsrMatrix* quads) {
+    size_t rows = 0, entries = 0;
+    StackShape(first, rowWeight, rest, &rows, &entries);
+    if (rows % kChannels != 0 || first.cols % kChannels != 0 || entries % kChannels != 0)
+        return false;
+    CsrMatrix q;
+    q.rows = static_cast<int64_t>(rows / kChannels);
+    q.cols = first.cols / kChannels;
+    q.rowPtr.assign(static_cast<size_t>(q.rows) + 1, 0);
+    q.col.resize(entries / kChannels);
+    q.val.resize(entries / kChannels);
+    size_t row = 0, at = 0;
+    if (!AppendQuads(first, weight, rowWeight, &q, &row, &at)) return false;
+    for (const RowBlock& b : rest)
+        if (!AppendQuads(*b.matrix, b.weight, b.rowWeight, &q, &row, &at)) return false;
+    *quads = std::move(q);
+    return true;
+}
+
+CsrMatrix StackRows(CsrMatrix&& first, double weight, const Vector* rowWeight,
+                    const std::vector<RowBlock>& rest) {
+    size_t rows = 0, entries = 0;
+    StackShape(first, rowWeight, rest, &rows, &entries);
+    CsrMatrix m = std::move(first);
     // The first block scaled in place: each value by its row's weight.
     for (int64_t r = 0; r < m.rows; ++r) {
         const double w = weight * (rowWeight ? (*rowWeight)[static_cast<size_t>(r)] : 1.0);
@@ -216,6 +281,17 @@ SparseOperator::SparseOperator(CsrMatrix a) : rows_(a.rows), cols_(a.cols), a_(s
     } else {
         at_ = Transpose(a_);
     }
+}
+
+SparseOperator SparseOperator::FromQuadForm(int64_t rows, int64_t cols, CsrMatrix quads) {
+    if (rows != kChannels * quads.rows || cols != kChannels * quads.cols)
+        throw std::invalid_argument("SparseOperator: quad form size");
+    SparseOperator op;
+    op.rows_ = rows, op.cols_ = cols;
+    op.quad_ = true;
+    op.q_ = std::move(quads);
+    op.qt_ = Transpose(op.q_);
+    return op;
 }
 
 CsrMatrix SparseOperator::A() const {

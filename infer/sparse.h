@@ -62,6 +62,13 @@ CsrMatrix StackRows(const std::vector<RowBlock>& blocks);
 CsrMatrix StackRows(CsrMatrix&& first, double weight, const Vector* rowWeight,
                     const std::vector<RowBlock>& rest);
 
+// The quad form of StackRows(first, weight, rowWeight, rest) read straight from the blocks: the
+// same matrix QuadForm would make of the stack, bit for bit, without the stack (four times the
+// quad form's size) ever being formed. False when the stack has no quad form or a block's rows
+// are not whole quads (then StackRows and SparseOperator(CsrMatrix) serve). Throws as StackRows.
+bool StackedQuadForm(const CsrMatrix& first, double weight, const Vector* rowWeight,
+                     const std::vector<RowBlock>& rest, CsrMatrix* quads);
+
 // [B0 B1 ...]: all blocks have the same row count; columns of block k follow those of k-1.
 CsrMatrix StackColumns(const std::vector<const CsrMatrix*>& blocks);
 
@@ -117,6 +124,9 @@ class SparseOperator {
   public:
     SparseOperator() = default;
     explicit SparseOperator(CsrMatrix a);
+    // The operator of the rows x cols matrix whose quad form is `quads` (QuadForm's or
+    // StackedQuadForm's): the same as SparseOperator(that matrix).
+    static SparseOperator FromQuadForm(int64_t rows, int64_t cols, CsrMatrix quads);
     // A itself (expanded from the quad form when there is one: each quad entry (p, t, v) is the
     // entries (4p + c, 4t + c, v) of the four rows, as QuadForm read them).
     CsrMatrix A() const;

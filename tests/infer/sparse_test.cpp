@@ -75,6 +75,84 @@ TEST(Sparse, MultiplyAndTransposeMatchDense) {
     }
 }
 
+// The four channel rows of every row of `quads` (columns 4t + c, the same values).
+CsrMatrix ChannelRows(const CsrMatrix& quads) {
+    CsrMatrix a;
+    a.cols = kChannels * quads.cols;
+    for (int64_t p = 0; p < quads.rows; ++p)
+        for (uint32_t c = 0; c < kChannels; ++c) {
+            std::vector<uint32_t> cs;
+            std::vector<double> vs;
+            for (int64_t k = quads.rowPtr[static_cast<size_t>(p)];
+                 k < quads.rowPtr[static_cast<size_t>(p) + 1]; ++k) {
+                cs.push_back(kChannels * quads.col[static_cast<size_t>(k)] + c);
+                vs.push_back(quads.val[static_cast<size_t>(k)]);
+            }
+            a.AddRow(cs, vs);
+        }
+    return a;
+}
+
+void ExpectSameBits(const CsrMatrix& a, const CsrMatrix& b) {
+    EXPECT_EQ(a.rows, b.rows);
+    EXPECT_EQ(a.cols, b.cols);
+    EXPECT_EQ(a.rowPtr, b.rowPtr);
+    EXPECT_EQ(a.col, b.col);
+    ASSERT_EQ(a.val.size(), b.val.size());
+    EXPECT_EQ(std::memcmp(a.val.data(), b.val.data(), a.val.size() * sizeof(double)), 0);
+}
+
+// The quad form read from the blocks is QuadForm's of the stacked matrix bit for bit (image rows
+// with a weight per row, equal within each quad, then two weighted regularizer-like blocks), its
+// operator is SparseOperator's of the stack; a quad whose rows are weighted differently, or a
+// block of rows that are not whole quads, has none.
+TEST(Sparse, StackedQuadFormIsTheStacksQuadForm) {
+    std::vector<double> dense;
+    const CsrMatrix image = ChannelRows(RandomMatrix(11, 9, 4, 21, &dense));
+    const CsrMatrix smooth = ChannelRows(RandomMatrix(6, 9, 2, 22, &dense));
+    const CsrMatrix prior = ChannelRows(RandomMatrix(5, 9, 1, 23, &dense));
+    Vector rowWeight(static_cast<size_t>(image.rows));
+    Random rng{5};
+    for (size_t r = 0; r < rowWeight.size(); r += kChannels)
+        std::fill_n(rowWeight.begin() + static_cast<std::ptrdiff_t>(r), kChannels, rng.Next());
+    const std::vector<RowBlock> rest = {{&smooth, 0.3, nullptr}, {&prior, 0.07, nullptr}};
+
+    CsrMatrix direct, fromStack;
+    ASSERT_TRUE(StackedQuadForm(image, 1.5, &rowWeight, rest, &direct));
+    const CsrMatrix stack = StackRows(CsrMatrix(image), 1.5, &rowWeight, rest);
+    ASSERT_TRUE(QuadForm(stack, &fromStack));
+    ExpectSameBits(direct, fromStack);
+
+    const SparseOperator a = SparseOperator::FromQuadForm(stack.rows, stack.cols, direct);
+    const SparseOperator b(stack);
+    ASSERT_TRUE(a.HasQuadForm() && b.HasQuadForm());
+    ExpectSameBits(a.A(), stack);
+    ExpectSameBits(a.QuadsT(), b.QuadsT());
+    Vector x(static_cast<size_t>(stack.cols)), y(static_cast<size_t>(stack.rows)), ax, bx, aty, bty;
+    for (double& v : x) v = rng.Next();
+    for (double& v : y) v = rng.Next();
+    a.Apply(x, &ax, 2), b.Apply(x, &bx, 2);
+    a.ApplyTranspose(y, &aty, 2), b.ApplyTranspose(y, &bty, 2);
+    EXPECT_EQ(ax, bx);
+    EXPECT_EQ(aty, bty);
+
+    // A quad's rows weighted differently: no quad form, neither way.
+    Vector uneven = rowWeight;
+    uneven[6] *= 2.0;
+    EXPECT_FALSE(StackedQuadForm(image, 1.5, &uneven, rest, &direct));
+    EXPECT_FALSE(QuadForm(StackRows(CsrMatrix(image), 1.5, &uneven, rest), &fromStack));
+    // A block of rows that are not whole quads.
+    CsrMatrix odd = smooth;
+    odd.AddRow({}, {});
+    odd.AddRow({}, {});
+    EXPECT_FALSE(StackedQuadForm(image, 1.5, &rowWeight, {{&odd, 1.0, nullptr}}, &direct));
+    // A block of another width is refused as StackRows refuses it.
+    CsrMatrix narrow = smooth;
+    narrow.cols -= kChannels;
+    EXPECT_THROW(StackedQuadForm(image, 1.5, &rowWeight, {{&narrow, 1.0, nullptr}}, &direct),
+                 std::invalid_argument);
+}
+
 // A matrix whose rows 4p + c hold the same values at columns 4t + c (the image and regularizer
 // rows): the operator keeps only its quad form, gives A back whole from it, and its products
 // equal the dense reference.
