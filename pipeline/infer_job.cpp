@@ -194,7 +194,7 @@ struct OwnRows {
 struct StackedRows {
     raster::RenderingMatrix a;
     infer::Target target;
-    raster::Frame frame;  // the first observation's
+    raster::Frame frame;  // the first observation's, without its passes
     std::vector<OwnRows> own;
 };
 
@@ -214,7 +214,9 @@ StackedRows StackRows(const std::vector<MapInput>& inputs, int w, int h, int k, 
                      FloatMaps(opt), &s.target);
         if (i == 0) {
             s.a = std::move(a);
-            s.frame = f;
+            std::vector<raster::Pass> passes = std::move(f.passes);
+            s.frame = f;  // the unknown texture's shape (not the observation's passes)
+            f.passes = std::move(passes);
         } else {
             AppendRows(&s.a, a);
         }
