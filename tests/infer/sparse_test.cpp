@@ -159,21 +159,13 @@ TEST(Sparse, StackedQuadFormIsTheStacksQuadForm) {
 TEST(Sparse, QuadFormOperatorGivesBackTheMatrix) {
     std::vector<double> q;
     const CsrMatrix quads = RandomMatrix(9, 7, 3, 13, &q);
-    CsrMatrix a;
-    a.cols = kChannels * quads.cols;
-    std::vector<double> dense(static_cast<size_t>(kChannels * quads.rows * a.cols), 0.0);
-    for (int64_t p = 0; p < quads.rows; ++p)
-        for (uint32_t c = 0; c < kChannels; ++c) {
-            std::vector<uint32_t> cs;
-            std::vector<double> vs;
-            for (int64_t k = quads.rowPtr[static_cast<size_t>(p)];
-                 k < quads.rowPtr[static_cast<size_t>(p) + 1]; ++k) {
-                cs.push_back(kChannels * quads.col[static_cast<size_t>(k)] + c);
-                vs.push_back(quads.val[static_cast<size_t>(k)]);
-                dense[static_cast<size_t>((kChannels * p + c) * a.cols + cs.back())] = vs.back();
-            }
-            a.AddRow(cs, vs);
-        }
+    const CsrMatrix a = ChannelRows(quads);
+    std::vector<double> dense(static_cast<size_t>(a.rows * a.cols), 0.0);
+    for (int64_t r = 0; r < a.rows; ++r)
+        for (int64_t k = a.rowPtr[static_cast<size_t>(r)]; k < a.rowPtr[static_cast<size_t>(r) + 1];
+             ++k)
+            dense[static_cast<size_t>(r * a.cols + a.col[static_cast<size_t>(k)])] =
+                a.val[static_cast<size_t>(k)];
     const SparseOperator op(a);
     ASSERT_TRUE(op.HasQuadForm());
     EXPECT_EQ(op.Rows(), a.rows);
