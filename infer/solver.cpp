@@ -175,13 +175,13 @@ struct LsmrChannel {
 };
 
 // Up to maxIts LSMR iterations on min |K diag(dm) y - r0| from y = 0.
-CycleResult LsmrCycle(const ScaledOperator& op, const Vector& r0, int maxIts, double atol,
-                      int threads, const Monitor& monitor) {
+CycleResult LsmrCycle(const ScaledOperator& op, Vector r0, int maxIts, double atol, int threads,
+                      const Monitor& monitor) {
     const size_t n = op.dm.size();
     CycleResult res;
     res.y.assign(n, 0.0);
     // Golub-Kahan start: beta u = r0, alpha v = (KD)^T u.
-    Vector u = r0, v, h, hbar(n, 0.0), kv, ktu;
+    Vector u = std::move(r0), v, h, hbar(n, 0.0), kv, ktu;
     Channels beta = Norm(u, threads);
     Scale(SafeInverse(beta), &u);
     op.ApplyTranspose(u, &v);
@@ -357,14 +357,14 @@ Channels FusedUpdate(const Channels& invAlpha, const Vector& dm, const Channels&
     return SumBlocks(*partial);
 }
 
-CycleResult LsmrCycleQuads(const SparseOperator& k, const Vector& dm, const Vector& r0, int maxIts,
+CycleResult LsmrCycleQuads(const SparseOperator& k, const Vector& dm, Vector r0, int maxIts,
                            double atol, int threads, const Monitor& monitor) {
     const size_t n = dm.size();
     CycleResult res;
     std::vector<Channels> partial;
     const Channels none{}, all{1.0, 1.0, 1.0, 1.0};
     // Golub-Kahan start: beta u = r0, alpha v = (KD)^T u.
-    Vector u = r0;
+    Vector u = std::move(r0);
     Channels beta = Norm(u, threads);
     Channels invBeta = SafeInverse(beta);
     FusedVectors f;
@@ -417,12 +417,12 @@ CycleResult LsmrCycleQuads(const SparseOperator& k, const Vector& dm, const Vect
 // CGLS ----------------------------------------------------------------------------------------
 
 // Up to maxIts CGLS iterations on min |K diag(dm) y - r0| from y = 0.
-CycleResult CglsCycle(const ScaledOperator& op, const Vector& r0, const Channels& normKD,
-                      int maxIts, double atol, int threads, const Monitor& monitor) {
+CycleResult CglsCycle(const ScaledOperator& op, Vector r0, const Channels& normKD, int maxIts,
+                      double atol, int threads, const Monitor& monitor) {
     CycleResult res;
     res.y.assign(op.dm.size(), 0.0);
-    Vector r = r0, s, p, q;
     const Channels normR0 = Norm(r0, threads);
+    Vector r = std::move(r0), s, p, q;
     op.ApplyTranspose(r, &s);
     p = s;
     Channels gamma = SquaredNorm(s, threads);
@@ -585,7 +585,7 @@ SolveResult SolveIterative(const LinearSystem& sys, const Vector& x0, const Solv
 
     while (true) {
         // Evaluate the restart point exactly; stop or start a new cycle from it.
-        const Evaluation ev = Evaluate(sys, sc, res.x, opt.bounds, opt.threads);
+        Evaluation ev = Evaluate(sys, sc, res.x, opt.bounds, opt.threads);
         res.log.push_back(Record(res.iterations, SecondsSince(t0), ev, gradientRef));
         const Channels normKD = FrobeniusNorm(sc, sc.d);
         if (Converged(ev, normKD, opt.atol)) {
@@ -619,10 +619,11 @@ SolveResult SolveIterative(const LinearSystem& sys, const Vector& x0, const Solv
         const CycleResult cyc =
             opt.method == Method::Lsmr
                 ? (sys.k.HasQuadForm()
-                       ? LsmrCycleQuads(sys.k, dm, ev.r, budget, opt.atol, opt.threads, monitor)
-                       : LsmrCycle(op, ev.r, budget, opt.atol, opt.threads, monitor))
-                : CglsCycle(op, ev.r, FrobeniusNorm(sc, dm), budget, opt.atol, opt.threads,
-                            monitor);
+                       ? LsmrCycleQuads(sys.k, dm, std::move(ev.r), budget, opt.atol, opt.threads,
+                                        monitor)
+                       : LsmrCycle(op, std::move(ev.r), budget, opt.atol, opt.threads, monitor))
+                : CglsCycle(op, std::move(ev.r), FrobeniusNorm(sc, dm), budget, opt.atol,
+                            opt.threads, monitor);
         for (size_t j = 0; j < res.x.size(); ++j) res.x[j] += dm[j] * cyc.y[j];
         Clamp(opt.bounds, &res.x);
         res.iterations += cyc.iterations;
