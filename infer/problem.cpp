@@ -223,10 +223,10 @@ LinearSystem BuildSystem(raster::RenderingMatrix&& matrix, const raster::Frame& 
     a = raster::RenderingMatrix{};  // its row pointers, offsets and rendered values
     if (!IsChannelDiagonal(img.a))
         throw std::invalid_argument("BuildSystem: taps mix colour channels");
-    sys.imageRowOf = img.rowOf;
-    sys.imageSqrtWeight = img.sqrtWeight;
-    sys.imageWeightSum = img.weightSum;
     sys.priorValue = weights.priorValue ? *weights.priorValue : TargetMean(img);
+    sys.imageRowOf = std::move(img.rowOf);
+    sys.imageSqrtWeight = std::move(img.sqrtWeight);  // the image rows' weights from here on
+    sys.imageWeightSum = img.weightSum;
 
     // Regularizer blocks (omitted when their weight is 0), built over the active texels only.
     int64_t cols = img.a.cols;
@@ -253,19 +253,19 @@ LinearSystem BuildSystem(raster::RenderingMatrix&& matrix, const raster::Frame& 
     // blocks: the stack itself, four times that size, is never formed).
     const int64_t priorRows = prior.rows;
     CsrMatrix quads;
-    if (StackedQuadForm(img.a, 1.0, &img.sqrtWeight, blocks, &quads)) {
+    if (StackedQuadForm(img.a, 1.0, &sys.imageSqrtWeight, blocks, &quads)) {
         const int64_t rows = kChannels * quads.rows;
         img.a = CsrMatrix{}, smooth = CsrMatrix{}, pyramid = CsrMatrix{}, prior = CsrMatrix{};
         sys.k = SparseOperator::FromQuadForm(rows, cols, std::move(quads));
     } else {
-        sys.k = SparseOperator(StackRows(std::move(img.a), 1.0, &img.sqrtWeight, blocks));
+        sys.k = SparseOperator(StackRows(std::move(img.a), 1.0, &sys.imageSqrtWeight, blocks));
     }
 
     // Right-hand side in the same row order.
     sys.h.assign(static_cast<size_t>(sys.k.Rows()), 0.0);
     for (int64_t r = 0; r < sys.imageRows; ++r)
         sys.h[static_cast<size_t>(r)] =
-            img.sqrtWeight[static_cast<size_t>(r)] * img.rhs[static_cast<size_t>(r)];
+            sys.imageSqrtWeight[static_cast<size_t>(r)] * img.rhs[static_cast<size_t>(r)];
     if (weights.prior > 0) {
         const int64_t first = sys.k.Rows() - priorRows;
         for (int64_t r = 0; r < priorRows; ++r)
