@@ -223,38 +223,7 @@ bool IsChannelDiagonal(const CsrMatrix& a) {
 }
 
 bool QuadForm(const CsrMatrix& a, CsrMatrix* quads) {
-    if (a.rows % kChannels != 0 || a.cols % kChannels != 0) return false;
-    if (a.val.size() % kChannels != 0) return false;
-    CsrMatrix q;
-    q.rows = a.rows / kChannels;
-    q.cols = a.cols / kChannels;
-    q.rowPtr.resize(static_cast<size_t>(q.rows) + 1);
-    q.col.resize(a.col.size() / kChannels);
-    q.val.resize(a.val.size() / kChannels);
-    size_t at = 0;
-    for (int64_t p = 0; p < q.rows; ++p) {
-        // Rows 4p + c: equal lengths, columns 4t + c, equal values.
-        const size_t r0 = static_cast<size_t>(kChannels * p);
-        const int64_t b0 = a.rowPtr[r0], len = a.rowPtr[r0 + 1] - b0;
-        for (size_t c = 1; c < kChannels; ++c) {
-            const int64_t bc = a.rowPtr[r0 + c];
-            if (a.rowPtr[r0 + c + 1] - bc != len) return false;
-            for (int64_t k = 0; k < len; ++k) {
-                const size_t e0 = static_cast<size_t>(b0 + k), ec = static_cast<size_t>(bc + k);
-                if (a.col[ec] != a.col[e0] + c || a.val[ec] != a.val[e0]) return false;
-            }
-        }
-        if (at + static_cast<size_t>(len) > q.col.size()) return false;
-        for (int64_t k = 0; k < len; ++k) {
-            const size_t e0 = static_cast<size_t>(b0 + k);
-            if (a.col[e0] % kChannels != 0) return false;
-            q.col[at] = a.col[e0] / kChannels;
-            q.val[at++] = a.val[e0];
-        }
-        q.rowPtr[static_cast<size_t>(p) + 1] = static_cast<int64_t>(at);
-    }
-    *quads = std::move(q);
-    return true;
+    return StackedQuadForm(a, 1.0, nullptr, {}, quads);  // 1.0 * v == v, bit for bit
 }
 
 void MultiplyQuads(const CsrMatrix& q, const Vector& x, Vector* y, int threads) {
