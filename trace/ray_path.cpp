@@ -210,14 +210,18 @@ std::vector<ExitRay> TraceFullTree(const Ray& primary, SurfaceHitFn& hits, int m
     return leaves;
 }
 
-bool PathsDiffer(const RayPath& a, const RayPath& b, double maxAngleDeg) {
-    // Topology: length, the event at each interface, whether the path left the system.
+bool TopologyDiffers(const RayPath& a, const RayPath& b) {
     if (a.vertices.size() != b.vertices.size() || a.escaped != b.escaped) return true;
     for (size_t i = 0; i < a.vertices.size(); ++i) {
         if (a.vertices[i].event != b.vertices[i].event) return true;
     }
-    // Geometry: angle between the exit directions.
-    return AngleBetweenDeg(glm::dvec3(a.exitDir), glm::dvec3(b.exitDir)) > maxAngleDeg;
+    return false;
+}
+
+bool PathsDiffer(const RayPath& a, const RayPath& b, double maxAngleDeg) {
+    // Topology, then geometry: the angle between the exit directions.
+    return TopologyDiffers(a, b) ||
+           AngleBetweenDeg(glm::dvec3(a.exitDir), glm::dvec3(b.exitDir)) > maxAngleDeg;
 }
 
 std::ostream& operator<<(std::ostream& os, Event event) {

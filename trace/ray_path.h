@@ -138,8 +138,11 @@ std::vector<ExitRay> TraceFullTree(const Ray& primary, SurfaceHitFn& hits, int m
 void TraceFullTree(const Ray& primary, SurfaceHitFn& hits, int maxDepth, double minWeight,
                    std::vector<ExitRay>& leaves);
 
-// Adaptive-tessellation criterion (hybrid §5): different path length, a different event at some
-// interface, different escape status, or exit directions more than maxAngleDeg apart.
+// Whether two paths differ in topology: path length, the event at some interface, or escape
+// status (a discontinuity between them that no interpolation bridges).
+bool TopologyDiffers(const RayPath& a, const RayPath& b);
+// Adaptive-tessellation criterion (hybrid §5): TopologyDiffers, or exit directions more than
+// maxAngleDeg apart.
 bool PathsDiffer(const RayPath& a, const RayPath& b, double maxAngleDeg = 3.0);
 
 std::ostream& operator<<(std::ostream& os, Event event);

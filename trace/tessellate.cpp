@@ -34,6 +34,11 @@ uint64_t EdgeKey(uint32_t u, uint32_t v) {
     return (static_cast<uint64_t>(lo) << 32) | hi;
 }
 
+bool AnyTopologyDiffers(const VertexPaths& a, const VertexPaths& b) {
+    return TopologyDiffers(a.reflection, b.reflection) ||
+           TopologyDiffers(a.refraction, b.refraction);
+}
+
 bool AnyPathsDiffer(const VertexPaths& a, const VertexPaths& b, double maxAngleDeg) {
     return PathsDiffer(a.reflection, b.reflection, maxAngleDeg) ||
            PathsDiffer(a.refraction, b.refraction, maxAngleDeg);
@@ -154,6 +159,7 @@ class Refiner {
 
   private:
     void Refine(const Tri& tri, const Bary& at, int depth);
+    double EdgeThreshold(const Tri& tri) const;
     bool WantsSplit(const Tri& tri, const std::array<bool, 3>& longEdges);
     void Split(const Tri& tri, const Bary& at, const std::array<bool, 3>& longEdges, int depth);
     void Split2(const Tri& r, const Bary& at, int depth);
@@ -193,16 +199,27 @@ void Refiner::Run(size_t first, size_t last) {
 }
 
 void Refiner::Refine(const Tri& tri, const Bary& at, int depth) {
+    const double t = EdgeThreshold(tri);
     std::array<bool, 3> longEdges{};
     for (size_t k = 0; k < 3; ++k) {
         // !(len <= t): a non-finite projection counts as long.
-        longEdges[k] = !(ScreenLength(tri[k], tri[(k + 1) % 3]) <= s_.opt.maxEdgeSubpixels);
+        longEdges[k] = !(ScreenLength(tri[k], tri[(k + 1) % 3]) <= t);
     }
     if (depth < s_.maxDepth && WantsSplit(tri, longEdges)) {
         Split(tri, at, longEdges, depth);
     } else {
         leaves.push_back(tri);
     }
+}
+
+// The length below which the triangle's edges are not split: t, or the finer topology threshold
+// when two of its vertices' paths differ in topology.
+double Refiner::EdgeThreshold(const Tri& tri) const {
+    const double t = s_.opt.maxEdgeSubpixels, topology = s_.opt.maxTopologyEdgeSubpixels;
+    if (!(topology > 0.0 && topology < t)) return t;
+    for (size_t k = 0; k < 3; ++k)
+        if (AnyTopologyDiffers(Paths(tri[k]), Paths(tri[(k + 1) % 3]))) return topology;
+    return t;
 }
 
 // Cheapest test first: some edge long, then the paths, then (ray queries) the occlusion.

@@ -3,8 +3,11 @@
 // §5): a triangle is refined while the greedy ray paths at its vertices differ (PathsDiffer on
 // either term: path length, reflect/refract choice, escape, exit angle > maxAngleDeg) and some of
 // its screen-projected edges are longer than t subpixels — 1-to-4, 1-to-3 or 1-to-2, splitting only
-// the long edges. Midpoints are shared through an edge hash (so each vertex ray is traced once),
-// and the t-junctions left between differently refined neighbours are removed afterwards by
+// the long edges. Optionally (maxTopologyEdgeSubpixels, not in the paper) a triangle whose
+// vertices' paths differ in topology — a discontinuity that linear interpolation cannot bridge at
+// any t — is refined down to a finer threshold than one whose exit directions merely diverge.
+// Midpoints are shared through an edge hash (so each vertex ray is traced once), and the
+// t-junctions left between differently refined neighbours are removed afterwards by
 // re-triangulating each triangle with all vertices found (recursively) on its edges. A midpoint's
 // normal is its edge's normals summed and normalized (opposite normals: the one of the endpoint
 // first in (position, normal) order, so the choice never depends on the numbering).
@@ -83,8 +86,11 @@ struct TessInput {
 struct TessOptions {
     double maxEdgeSubpixels = 3.0;  // t: edges at most this long on screen are not split
     double maxAngleDeg = 3.0;       // exit directions further apart than this differ
-    int maxDepth = 10;              // bound on the refinement levels of one input triangle
-    int threads = 1;                // > 1: callbacks are called concurrently (see above)
+    // > 0: a triangle whose vertices' paths differ in topology (TopologyDiffers, on either term)
+    // is split while some edge is longer than min(t, this); 0: t for every triangle (the paper's).
+    double maxTopologyEdgeSubpixels = 0.0;
+    int maxDepth = 10;  // bound on the refinement levels of one input triangle
+    int threads = 1;    // > 1: callbacks are called concurrently (see above)
 };
 
 struct TessStats {

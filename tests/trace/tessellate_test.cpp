@@ -2,9 +2,9 @@
 // tessellate_test.cpp — adaptive tessellation on planar meshes with analytic fake vertex paths:
 // watertightness after t-junction removal (edge pairing, original boundary, no vertex inside an
 // edge), the split criteria on hand-made paths (topology, 2.9° vs 3.1°, short edges → 1-to-2 and
-// 1-to-3), back-facing and occluded triangles, area preservation, one trace per vertex, interior
-// midpoints traced on their input triangle.
-// Conventions: meshes lie in z = 0 with normals +z; the projection is (x, y) · scale subpixels.
+// 1-to-3, the finer topology threshold), back-facing and occluded triangles, area preservation, one
+// trace per vertex, interior midpoints traced on their input triangle. Conventions: meshes lie in z
+// = 0 with normals +z; the projection is (x, y) · scale subpixels.
 #include "trace/tessellate.h"
 
 #include <gtest/gtest.h>
@@ -352,6 +352,67 @@ TEST(Tessellate, TopologyDifferencesSplit) {
     VertexPaths oneTerm = kPlain;
     oneTerm.refraction.escaped = false;
     EXPECT_EQ(OddVertexCase(oneTerm).stats.split4, 1u);
+}
+
+// A triangle 8 subpixels on its legs whose paths change topology at x = 6 (one interface more
+// beyond) and turn by `degPerUnit` degrees per subpixel along x.
+TessellationResult DiscontinuityCase(double t, double topologyT, double degPerUnit = 0.0) {
+    TessInput in = Triangle({0, 0}, {8, 0}, {0, 8});
+    in.evaluate = [degPerUnit](const glm::vec3& p, const glm::vec3&) {
+        return MakePaths(p.x > 6.0f ? 2 : 1, Event::Reflect,
+                         Rotated(degPerUnit * static_cast<double>(p.x)));
+    };
+    return Tessellate(in, {.maxEdgeSubpixels = t, .maxTopologyEdgeSubpixels = topologyT});
+}
+
+double LongestEdge(const TessellationResult& r, const glm::uvec3& t) {
+    double longest = 0.0;
+    for (int k = 0; k < 3; ++k)
+        longest = std::max(longest, static_cast<double>(glm::distance(
+                                        r.positions[t[k]], r.positions[t[(k + 1) % 3]])));
+    return longest;
+}
+
+bool Straddles(const TessellationResult& r, const glm::uvec3& t) {
+    int beyond = 0;
+    for (int k = 0; k < 3; ++k) beyond += r.positions[t[k]].x > 6.0f;
+    return beyond == 1 || beyond == 2;
+}
+
+// Triangles across a change of topology refine down to the topology threshold, not t; exit
+// directions that merely diverge stop at t; a threshold of 0 or at least t is the paper's rule.
+TEST(Tessellate, TopologyThresholdRefinesDiscontinuitiesFurther) {
+    const TessellationResult paper = DiscontinuityCase(5.0, 0.0);
+    const TessellationResult fine = DiscontinuityCase(5.0, 2.0);
+    double paperLongest = 0.0;
+    for (const glm::uvec3& t : paper.triangles)
+        if (Straddles(paper, t)) paperLongest = std::max(paperLongest, LongestEdge(paper, t));
+    EXPECT_GT(paperLongest, 2.0);  // t alone leaves longer edges across the discontinuity
+    size_t straddling = 0;
+    for (const glm::uvec3& t : fine.triangles) {
+        if (!Straddles(fine, t)) continue;
+        ++straddling;
+        EXPECT_LE(LongestEdge(fine, t), 2.0);
+    }
+    EXPECT_GT(straddling, 0u);
+    EXPECT_GT(fine.stats.vertexRays, paper.stats.vertexRays);
+    EXPECT_NEAR(TotalArea(fine.positions, fine.triangles), 32.0, 1e-4);
+    for (const glm::uvec3& t : fine.triangles) EXPECT_GT(Area(fine.positions, t), 0.0);
+    // A threshold at or above t changes nothing.
+    EXPECT_EQ(DiscontinuityCase(5.0, 5.0).triangles, paper.triangles);
+    EXPECT_EQ(DiscontinuityCase(5.0, 7.0).positions, paper.positions);
+    // Without a change of topology (the same length everywhere) exit angles of 4° per subpixel
+    // split down to t only: the threshold changes nothing.
+    TessInput in = Triangle({0, 0}, {8, 0}, {0, 8});
+    in.evaluate = [](const glm::vec3& p, const glm::vec3&) {
+        return MakePaths(1, Event::Reflect, Rotated(4.0 * static_cast<double>(p.x)));
+    };
+    const TessellationResult angles = Tessellate(in, {.maxEdgeSubpixels = 5.0});
+    const TessellationResult anglesFine =
+        Tessellate(in, {.maxEdgeSubpixels = 5.0, .maxTopologyEdgeSubpixels = 2.0});
+    EXPECT_GT(angles.stats.split4 + angles.stats.split3 + angles.stats.split2, 0u);
+    EXPECT_EQ(anglesFine.positions, angles.positions);
+    EXPECT_EQ(anglesFine.triangles, angles.triangles);
 }
 
 // Every vertex differs from every other (path length = call number).
