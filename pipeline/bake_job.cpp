@@ -49,12 +49,14 @@ json BakeSettings(const BakeJobOptions& o) {
         {"lod-bias", hw.lodBias},
         {"radiance-scale", hw.radianceScale}};
     // Settings added later, recorded only when not their default (older bake.json files stay
-    // valid): the maps' format, the tessellation t and the further t the maps also fit.
+    // valid): the maps' format, the tessellation t, the further t the maps also fit and the
+    // topology threshold.
     if (hw.format != raster::TexelFormat::Rgba8)
         for (const auto& [name, format] : raster::kTexelFormatNames)
             if (format == hw.format) s["map-format"] = std::string(name);
     if (o.infer.tessT != runtime::kDefaultTessT) s["t"] = o.infer.tessT;
     if (!o.infer.alsoTessT.empty()) s["also-t"] = o.infer.alsoTessT;
+    if (o.infer.topologyT != runtime::kDefaultTopologyT) s["t-topology"] = o.infer.topologyT;
     return s;
 }
 
@@ -79,12 +81,17 @@ void CheckSettings(const BakeJobOptions& o) {
             if (!now.contains(key))
                 throw base::InputError(path, "this bake was started with --" + key + " " +
                                                  value.dump() + ", resumed without it");
+        // --map-format first: it sets --lod-bias's default, so the message names what was given.
+        std::vector<std::string> keys;
+        if (now.contains("map-format")) keys.push_back("map-format");
         for (const auto& [key, value] : now.items())
-            if (!was.contains(key) || was.at(key) != value)
+            if (key != "map-format") keys.push_back(key);
+        for (const std::string& key : keys)
+            if (!was.contains(key) || was.at(key) != now.at(key))
                 throw base::InputError(
                     path, "this bake was started with --" + key + " " +
                               (was.contains(key) ? was.at(key).dump() : std::string("(none)")) +
-                              ", resumed with " + value.dump() +
+                              ", resumed with " + now.at(key).dump() +
                               " (resume with the same options, or bake into a new directory)");
         return;
     }
@@ -182,6 +189,7 @@ BakeJobOptions DemoBakeOptions() {
     o.infer.alsoTessT = {runtime::kDefaultTessT};
     o.infer.hardware.format = raster::TexelFormat::Rgba32F;
     o.infer.weights.smooth = DefaultSmooth(o.infer.hardware.format);
+    o.infer.hardware.lodBias = DefaultLodBias(o.infer.hardware.format);
     return o;
 }
 

@@ -44,6 +44,10 @@ double DefaultSmooth(raster::TexelFormat format) {
     return format == raster::TexelFormat::Rgba32F ? 10.0 * solver : solver;
 }
 
+float DefaultLodBias(raster::TexelFormat format) {
+    return format == raster::TexelFormat::Rgba32F ? -2.5f : -4.0f;
+}
+
 infer::SolveOptions DefaultSolveOptions() {
     infer::SolveOptions s;
     s.maxIterations = 150;
@@ -513,6 +517,7 @@ ViewGeometry SampleGeometry(const Context& c, int u, const runtime::LensGroupEm&
     vg.camera = c.cameras[static_cast<size_t>(u)];
     runtime::LensPathsOptions lo;
     lo.tess.maxEdgeSubpixels = tessT;
+    lo.tess.maxTopologyEdgeSubpixels = c.opt.topologyT;
     lo.supersampling = c.tm.spp;
     lo.threads = c.opt.threads;
     vg.lp = runtime::TraceLensPaths(c.tracer, c.embree, vg.camera, group, lo);
@@ -773,6 +778,7 @@ void WriteInferOutputs(const InferJobOptions& o, const InferJobResult& r) {
     PemManifest m = PemManifestFor(r.trace, o.outDir, o.res, o.hdr, o.views, o.hardware,
                                    std::max(o.res, o.maxRes), o.parameterization);
     m.tessT = o.tessT;
+    m.topologyT = o.topologyT;
     m.alsoTessT = o.alsoTessT;
     WritePemManifest(m);
 }

@@ -57,13 +57,12 @@ namespace pem::pipeline {
 //    twice as long, and the demo no longer finishes in 5 minutes. `--max-res 256` chooses 256
 //    for every map of scene (a) but the cup's local one (the teapot's refraction magnifies
 //    more than the cup's reflection), and costs 1.7-2.2 times the inference: teapot +0.9 dB.
-//  - LOD bias -4: every subpixel is a row of the fit, so the fit can use texels finer than the
-//    footprint, which the hardware's MIP filter would otherwise blur (teapot +0.3 dB, cup
-//    +1.5, cup in PEM mode +2.0).
+//  - LOD bias (DefaultLodBias) -4: every subpixel is a row of the fit, so the fit can use texels
+//    finer than the footprint, which the hardware's MIP filter would otherwise blur (teapot
+//    +0.3 dB, cup +1.5, cup in PEM mode +2.0).
 //  - Radiance scale 2: 8-bit maps reach twice the unit radiance (teapot +0.35 dB, cup +0.35;
 //    4 gives the teapot +0.2 dB more and costs the cup 0.45 dB).
 inline constexpr int kDefaultMapResolution = 128;
-inline constexpr float kDefaultLodBias = -4.0f;
 inline constexpr float kDefaultRadianceScale = 2.0f;
 
 // LSMR with at most 150 iterations and atol 1e-4, a log line every 25 iterations: what every
@@ -77,6 +76,16 @@ infer::SolveOptions DefaultSolveOptions();
 // 20.20 → 20.41 dB, between the samples 21.52 → 21.94 dB; at the samples the outside check
 // loses 0.3–0.75 dB (teapot 32.38 → 31.63 at sample 0).
 double DefaultSmooth(raster::TexelFormat format);
+
+// The maps' LOD bias for maps of `format` when none is given (--lod-bias): -4 for 8-bit maps
+// (above), -2.5 for float maps, whose negative texels undo part of the MIP filter's blur
+// themselves: off the samples the finest levels then alias less (speckles where a lookup sweeps
+// across texels). The demo's report (scene (a), lens pixels against the 6×6 reference, with the
+// topology threshold runtime::kDefaultTopologyT), hybrid at t = 5, -4 / -3 / -2.5 / -2: 10°
+// above the circle 20.24 / 20.35 / 20.55 / 20.54 dB, between the samples 21.81 / 21.92 /
+// 21.99 / 22.00; the outside check at the three samples (hybrid at t = 1, lowest of the three)
+// glass teapot 30.81 / 30.26 / 30.53 / 29.96, mirror cup 34.06 / 31.29 / 30.54 / 29.58 dB.
+float DefaultLodBias(raster::TexelFormat format);
 
 // The weight of the rows of a further tessellation (InferJobOptions::alsoTessT), the maps' own
 // t's being 1. Scene (a) at the demo's settings with --also-t 5, the glass teapot's hybrid at
@@ -94,7 +103,7 @@ struct InferJobOptions {
     int threads = 1;
     // The target hardware: profile, the maps' sampler and radiance scale.
     runtime::MapHardware hardware{.radianceScale = kDefaultRadianceScale,
-                                  .lodBias = kDefaultLodBias};
+                                  .lodBias = DefaultLodBias(raster::TexelFormat::Rgba8)};
     // The maps' layout (runtime/parameterization.h); a 2D layout needs res >= 2.
     runtime::Parameterization parameterization = runtime::Parameterization::Cube;
     bool hdr = false;                       // float radiance, bounds [0, inf)
@@ -104,6 +113,9 @@ struct InferJobOptions {
     // alone are tuned to its vertices and show speckles where a coarser t interpolates other
     // lookups.
     std::vector<double> alsoTessT;
+    // Every tessellation's topology threshold (trace/tessellate.h; 0: t alone), kept in the
+    // manifest so that the renderers refine as the maps were fitted.
+    double topologyT = runtime::kDefaultTopologyT;
     std::vector<int> views;        // empty: all
     bool single = false;           // also the single-layer map (`single`, both terms)
     int neighbours = 0;            // samples on each side in the simultaneous solve (hybrid §4.3)

@@ -44,6 +44,8 @@ json ManifestJson(const PemManifest& m) {
               {"lens_groups", groups}};
     // Only when given (absent: none, as directories written before the key).
     if (!m.alsoTessT.empty()) j["also_t"] = m.alsoTessT;
+    // Only when there is one (absent: t alone, as directories written before the key).
+    if (m.topologyT > 0.0) j["t_topology"] = m.topologyT;
     // RGBA32F maps only (absent: RGBA8, as directories written before the key).
     if (m.hardware.format != raster::TexelFormat::Rgba8)
         for (const auto& [name, format] : raster::kTexelFormatNames)
@@ -112,6 +114,9 @@ PemManifest ManifestFromJson(const json& j) {
     if (j.contains("also_t")) m.alsoTessT = j.at("also_t").get<std::vector<double>>();
     for (double t : m.alsoTessT)
         if (!(t >= 0.25 && t <= 1e4)) throw std::runtime_error("also_t must lie in [0.25, 1e4]");
+    m.topologyT = j.value("t_topology", 0.0);
+    if (!(m.topologyT == 0.0 || (m.topologyT >= 0.25 && m.topologyT <= 1e4)))
+        throw std::runtime_error("t_topology must be 0 or lie in [0.25, 1e4]");
     for (const json& v : j.at("views")) m.views.push_back(CameraFromJson(v));
     m.inferred = IntsAt<int>(j, "inferred_views");
     int index = 0;

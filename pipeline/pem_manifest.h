@@ -32,10 +32,11 @@ struct PemManifest {
     double minWeight = 1e-3;
     std::string fresnel = "exact";
     bool hdr = false;
-    double tessT = runtime::kDefaultTessT;  // the hybrid tessellation t of the inference
-    std::vector<double> alsoTessT;          // further t the layer maps fit (infer --also-t)
-    std::vector<raster::Camera> views;      // every viewpoint sample of the trace
-    std::vector<int> inferred;              // the samples with maps
+    double tessT = runtime::kDefaultTessT;          // the hybrid tessellation t of the inference
+    double topologyT = runtime::kDefaultTopologyT;  // its topology threshold (0: t alone)
+    std::vector<double> alsoTessT;                  // further t the layer maps fit (infer --also-t)
+    std::vector<raster::Camera> views;              // every viewpoint sample of the trace
+    std::vector<int> inferred;                      // the samples with maps
     std::vector<runtime::LensGroupEm> groups;
 };
 

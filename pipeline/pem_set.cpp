@@ -69,6 +69,7 @@ runtime::MapSet LoadMapSet(const PemManifest& m) {
     set.spp = m.spp;
     set.res = m.res;
     set.tessT = m.tessT;
+    set.topologyT = m.topologyT;
     set.hardware = m.hardware;
     set.parameterization = m.parameterization;
     TraceManifest tracing;  // the tracer's options, as the trace read them

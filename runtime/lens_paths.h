@@ -36,6 +36,17 @@ namespace pem::runtime {
 // maps fit the tessellation they were inferred on (MapSet::tessT), so a renderer draws with it.
 inline constexpr double kDefaultTessT = 5.0;
 
+// Where two vertices' greedy paths differ in topology (trace/tessellate.h
+// maxTopologyEdgeSubpixels), inference and rendering refine down to min(t, this) subpixels unless
+// told otherwise (MapSet::topologyT): a discontinuity that no interpolation bridges, while a
+// merely diverging exit direction stops at t. Scene (a) at the demo's settings (the maps fitted
+// through the same tessellations), hybrid at t = 5, report 10° above the circle against the 6×6
+// reference (1-spp ray tracer: 20.32 dB): LOD bias -4 19.83 → 20.24 dB, the float maps' -2.5
+// 20.55 (2.26 M vertex rays, 1.40 M without); a threshold of 3: 20.40 dB. The cost, between two
+// samples (bench/render_bench.sh's view): 0.47 → 1.10 M vertex rays, 337 → 529 ms a frame (3:
+// 0.71 M, 433 ms); `--t-topology 0` renders as the paper does.
+inline constexpr double kDefaultTopologyT = 2.0;
+
 // The triangles of one lens group as one world-space mesh (objects in group order).
 struct LensMesh {
     std::vector<glm::vec3> positions;

@@ -74,9 +74,10 @@ struct MapSet {
     int spp = 1;                          // the traced images' K×K sampling (t's unit)
     int res = 0;                          // face size of the maps (the layout's size)
     Parameterization parameterization = Parameterization::Cube;  // the maps' layout
-    trace::TraceOptions tracing;   // the ray tracer's options the maps were traced with
-    MapHardware hardware;          // what they were inferred for and are drawn by
-    double tessT = kDefaultTessT;  // the hybrid tessellation t they were inferred on
+    trace::TraceOptions tracing;           // the ray tracer's options the maps were traced with
+    MapHardware hardware;                  // what they were inferred for and are drawn by
+    double tessT = kDefaultTessT;          // the hybrid tessellation t they were inferred on
+    double topologyT = kDefaultTopologyT;  // and its topology threshold (0: t alone)
     std::function<const raster::Texture*(int view, int group, const std::string& name)> map;
 };
 

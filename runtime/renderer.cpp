@@ -390,6 +390,7 @@ GroupGeometry Renderer::Impl::Geometry(const GroupDraw& d, bool pemSplit) {
     } else {
         LensPathsOptions lo;
         lo.tess.maxEdgeSubpixels = d.s.t > 0.0 ? d.s.t : maps.tessT;
+        lo.tess.maxTopologyEdgeSubpixels = d.s.topologyT.value_or(maps.topologyT);
         lo.supersampling = d.s.subpixels > 0 ? d.s.subpixels : maps.spp;
         lo.adaptive = d.s.method != Method::Pem;
         lo.threads = d.s.threads;

@@ -29,6 +29,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -45,7 +46,10 @@ const char* ToString(Method m);
 
 struct RenderSettings {
     Method method = Method::Hybrid;
-    double t = 0.0;     // hybrid tessellation threshold (subpixels); 0: the maps' (MapSet::tessT)
+    double t = 0.0;  // hybrid tessellation threshold (subpixels); 0: the maps' (MapSet::tessT)
+    // Its topology threshold (subpixels, trace/tessellate.h; 0: t alone); nullopt: the maps'
+    // (MapSet::topologyT).
+    std::optional<double> topologyT;
     int subpixels = 0;  // k: subpixels per pixel side of the lens frames, and t's unit
                         // (1/k pixel); 0: the PEMs' supersampling (the traced images' K×K,
                         // the hybrid paper's 3×3), as inferred; the viewer, which draws one

@@ -15,6 +15,7 @@
 #include "pipeline/json_values.h"
 #include "pipeline/layout.h"
 #include "pipeline/pem_manifest.h"
+#include "pipeline/pem_set.h"
 #include "pipeline/trace_manifest.h"
 #include "tests/pipeline/pipeline_test_util.h"
 
@@ -302,6 +303,41 @@ TEST(PemManifest, LodBiasRoundTripsWithinItsRange) {
     old.replace(at, key.size() + 1, "");
     WriteFile(path, old);
     EXPECT_EQ(ReadPemManifest(m.dir).hardware.lodBias, 0.0f);
+    fs::remove_all(dir);
+}
+
+// The topology threshold the maps were fitted with (infer --t-topology): written when there is
+// one, read back, checked; absent (directories written before it) means t alone.
+TEST(PemManifest, TopologyThresholdRoundTripsAndAbsentMeansTAlone) {
+    const fs::path dir = FreshDir("pem_manifest_topology");
+    const TraceManifest t = SmallTrace(dir, 1);
+    PemManifest m = PemManifestFor(t, (dir / "pem").string(), 32, false, {});
+    EXPECT_EQ(m.topologyT, runtime::kDefaultTopologyT);
+    m.topologyT = 1.5;
+    fs::create_directories(m.dir);
+    WritePemManifest(m);
+    EXPECT_EQ(ReadPemManifest(m.dir).topologyT, 1.5);
+    EXPECT_EQ(LoadMapSet(ReadPemManifest(m.dir)).topologyT, 1.5);
+    const std::string path = (fs::path(m.dir) / kManifestJson).string();
+    const std::string text = ReadFile(path);
+    const std::string key = "\"t_topology\": 1.5";
+    const size_t at = text.find(key);
+    ASSERT_NE(at, std::string::npos);
+    for (const char* bad : {"-1", "0.1", "1e5", "\"x\"", "null"}) {
+        std::string t2 = text;
+        t2.replace(at, key.size(), std::string("\"t_topology\": ") + bad);
+        WriteFile(path, t2);
+        EXPECT_EQ(ErrorOf([&] { ReadPemManifest(m.dir); }).rfind(path + ": ", 0), 0u) << bad;
+    }
+    std::string old = text;
+    old.replace(at, key.size() + 1, "");
+    WriteFile(path, old);
+    EXPECT_EQ(ReadPemManifest(m.dir).topologyT, 0.0);
+    // 0 (t alone) is written as absent.
+    m.topologyT = 0.0;
+    WritePemManifest(m);
+    EXPECT_EQ(ReadFile(path).find("\"t_topology\""), std::string::npos);
+    EXPECT_EQ(ReadPemManifest(m.dir).topologyT, 0.0);
     fs::remove_all(dir);
 }
 

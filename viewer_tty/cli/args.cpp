@@ -62,7 +62,31 @@ void AddMapSizeOptions(CLI::App* sub, int* res, int* maxRes) {
                     "two, >= --res; PEM §4 EM resolution)");
 }
 
-void AddTessellationOptions(CLI::App* sub, double* tessT, std::vector<double>* alsoTessT) {
+namespace {
+constexpr const char* kTopologyHelp =
+    "topology threshold (subpixels): triangles whose vertices' ray paths differ in topology are "
+    "refined down to min(t, this); 0: t alone (the hybrid paper's)";
+
+// 0 or a t.
+std::string CheckTopologyT(const std::string& v) {
+    try {
+        const double t = std::stod(v);
+        if (t == 0.0 || (t >= 0.25 && t <= 1e4)) return "";
+    } catch (const std::exception&) {
+    }
+    return "0 or a value in [0.25, 1e4]";
+}
+}  // namespace
+
+void AddTopologyOption(CLI::App* sub, std::optional<double>* topologyT) {
+    sub->add_option_function<double>(
+           "--t-topology", [topologyT](double v) { *topologyT = v; },
+           std::string(kTopologyHelp) + " (default: the maps', manifest.json)")
+        ->check(CheckTopologyT);
+}
+
+void AddTessellationOptions(CLI::App* sub, double* tessT, std::vector<double>* alsoTessT,
+                            double* topologyT) {
     sub->add_option("--t", *tessT, "tessellation t (subpixels) the maps are fitted on")
         ->check(CLI::Range(0.25, 1e4));
     sub->add_option("--also-t", *alsoTessT,
@@ -70,6 +94,7 @@ void AddTessellationOptions(CLI::App* sub, double* tessT, std::vector<double>* a
                     "at that t too")
         ->delimiter(',')
         ->check(CLI::Range(0.25, 1e4));
+    sub->add_option("--t-topology", *topologyT, kTopologyHelp)->check(CheckTopologyT);
 }
 
 CLI::Option* AddParameterizationOption(CLI::App* sub, runtime::Parameterization* parameterization) {
@@ -88,14 +113,16 @@ CLI::Option* AddParameterizationOption(CLI::App* sub, runtime::Parameterization*
         });
 }
 
-void AddMapHardwareOptions(CLI::App* sub, runtime::MapHardware* hardware) {
+CLI::Option* AddMapHardwareOptions(CLI::App* sub, runtime::MapHardware* hardware) {
     AddProfileOption(sub, &hardware->profile);
     sub->add_option("--anisotropy", hardware->maxAnisotropy,
                     "the lens maps' GL_TEXTURE_MAX_ANISOTROPY (1: off, 2..16)")
         ->check(CLI::Range(1.0, 16.0));
-    sub->add_option("--lod-bias", hardware->lodBias,
-                    "the lens maps' GL_TEXTURE_LOD_BIAS (-4..4; below 0: finer levels)")
-        ->check(CLI::Range(-runtime::kMaxLodBias, runtime::kMaxLodBias));
+    CLI::Option* lodBias =
+        sub->add_option("--lod-bias", hardware->lodBias,
+                        "the lens maps' GL_TEXTURE_LOD_BIAS (-4..4; below 0: finer levels; "
+                        "default -4, float maps -2.5)")
+            ->check(CLI::Range(-runtime::kMaxLodBias, runtime::kMaxLodBias));
     sub->add_option_function<std::string>(
            "--map-format",
            [hardware](const std::string& v) {
@@ -114,6 +141,7 @@ void AddMapHardwareOptions(CLI::App* sub, runtime::MapHardware* hardware) {
             }
             return "a power of two in [1, 64]";
         });
+    return lodBias;
 }
 
 std::function<void(const std::string&, double)> ProgressTo(tty::ProgressLine* line) {

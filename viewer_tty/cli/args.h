@@ -10,6 +10,7 @@
 
 #include <CLI/CLI.hpp>
 #include <functional>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -29,16 +30,23 @@ runtime::Method ParseMethod(const std::string& name);
 // --profile NAME: one of raster/profile.h's profiles (the value is checked).
 void AddProfileOption(CLI::App* sub, std::string* profile);
 
-// --profile and --anisotropy N (the lens maps' GL_TEXTURE_MAX_ANISOTROPY, 1..16) of inference.
-void AddMapHardwareOptions(CLI::App* sub, runtime::MapHardware* hardware);
+// The hardware the maps are inferred for: --profile, --anisotropy N (the lens maps'
+// GL_TEXTURE_MAX_ANISOTROPY, 1..16), --lod-bias, --map-format and --radiance-scale. Returns the
+// --lod-bias option: when it is not given, the caller sets the format's default
+// (pipeline::DefaultLodBias), known only once --map-format is parsed.
+CLI::Option* AddMapHardwareOptions(CLI::App* sub, runtime::MapHardware* hardware);
 
 // --res N and --max-res N: the maps' face size, and the largest a test rendering at each sample
 // may choose (infer, bake and demo).
 void AddMapSizeOptions(CLI::App* sub, int* res, int* maxRes);
 
-// --t T and --also-t T1,T2..: the tessellation t the maps are fitted on (and the renderers'
-// default for them), and further t whose rows they also fit (infer and bake).
-void AddTessellationOptions(CLI::App* sub, double* tessT, std::vector<double>* alsoTessT);
+// --t T, --also-t T1,T2.. and --t-topology T: the tessellation t the maps are fitted on (and the
+// renderers' default for them), further t whose rows they also fit, and every tessellation's
+// topology threshold (infer and bake).
+void AddTessellationOptions(CLI::App* sub, double* tessT, std::vector<double>* alsoTessT,
+                            double* topologyT);
+// --t-topology for a renderer: the maps' (nullopt) unless given.
+void AddTopologyOption(CLI::App* sub, std::optional<double>* topologyT);
 
 // --parameterization NAME: the maps' layout (runtime/parameterization.h).
 CLI::Option* AddParameterizationOption(CLI::App* sub, runtime::Parameterization* parameterization);

@@ -16,6 +16,7 @@ struct BakeArgs {
     pipeline::BakeJobOptions job = pipeline::DefaultBakeOptions();
     std::string size = "640x480";
     bool quiet = false;
+    CLI::Option* lodBias = nullptr;  // given or not: the default depends on --map-format
 };
 
 BakeArgs& Args() {
@@ -45,8 +46,8 @@ void AddBakeCommand(CLI::App& app) {
     sub->add_option("--jobs", o.jobs, "viewpoint samples inferred at once")
         ->check(CLI::Range(1, 64));
     sub->add_option("--threads", o.threads, "threads per job")->check(CLI::Range(1, 256));
-    AddMapHardwareOptions(sub, &o.infer.hardware);
-    AddTessellationOptions(sub, &o.infer.tessT, &o.infer.alsoTessT);
+    a.lodBias = AddMapHardwareOptions(sub, &o.infer.hardware);
+    AddTessellationOptions(sub, &o.infer.tessT, &o.infer.alsoTessT, &o.infer.topologyT);
     sub->add_flag("--quiet", a.quiet, "no progress line");
 }
 
@@ -55,6 +56,8 @@ int RunBakeCommand() {
     pipeline::BakeJobOptions o = a.job;
     std::tie(o.trace.width, o.trace.height) = ParseSize(a.size);
     o.infer.weights.smooth = pipeline::DefaultSmooth(o.infer.hardware.format);
+    if (a.lodBias->count() == 0)
+        o.infer.hardware.lodBias = pipeline::DefaultLodBias(o.infer.hardware.format);
     RunBake(o, a.quiet);
     return 0;
 }

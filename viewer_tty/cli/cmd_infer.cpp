@@ -19,7 +19,8 @@ struct InferArgs {
     pipeline::InferJobOptions job;
     std::string views;
     bool quiet = false;
-    CLI::Option* smooth = nullptr;  // given or not: the default depends on --map-format
+    CLI::Option* smooth = nullptr;   // given or not: the default depends on --map-format
+    CLI::Option* lodBias = nullptr;  // the same
 };
 
 InferArgs& Args() {
@@ -59,12 +60,12 @@ void AddInferCommand(CLI::App& app) {
     AddMapSizeOptions(sub, &o.res, &o.maxRes);
     AddParameterizationOption(sub, &o.parameterization);
     sub->add_option("--threads", o.threads, "worker threads")->check(CLI::Range(1, 256));
-    AddMapHardwareOptions(sub, &o.hardware);
+    a.lodBias = AddMapHardwareOptions(sub, &o.hardware);
     sub->add_option("--views", a.views, "viewpoint samples to infer, e.g. 0,2 (default: all)");
     sub->add_option("--neighbours", o.neighbours,
                     "samples on each side in the simultaneous solve (hybrid §4.3)")
         ->check(CLI::Range(0, 8));
-    AddTessellationOptions(sub, &o.tessT, &o.alsoTessT);
+    AddTessellationOptions(sub, &o.tessT, &o.alsoTessT, &o.topologyT);
     sub->add_option("--max-iterations", o.solve.maxIterations, "LSMR iterations per map")
         ->check(CLI::Range(1, 100000));
     char smoothHelp[96];
@@ -86,6 +87,7 @@ int RunInferCommand() {
     const InferArgs& a = Args();
     pipeline::InferJobOptions o = a.job;
     if (a.smooth->count() == 0) o.weights.smooth = pipeline::DefaultSmooth(o.hardware.format);
+    if (a.lodBias->count() == 0) o.hardware.lodBias = pipeline::DefaultLodBias(o.hardware.format);
     o.views = a.views.empty() ? std::vector<int>{} : ParseViewList(a.views);
     CreateDirectory(o.outDir);
     if (!o.exportDir.empty()) CreateDirectory(o.exportDir);

@@ -23,7 +23,8 @@ using nlohmann::json;
 
 struct RenderArgs {
     std::string pemDir, view = "sample:0", size, out, method = "hybrid", stats, profile;
-    double t = 0.0;  // 0: the maps' own (the inference's t)
+    double t = 0.0;                   // 0: the maps' own (the inference's t)
+    std::optional<double> topologyT;  // nullopt: the maps' own
     int spp = 3, subpixels = 0, layers = 0, threads = 1, repeat = 0;
     float exposure = 1.0f;
     bool quiet = false;
@@ -55,6 +56,7 @@ void AddRenderCommand(CLI::App& app) {
                     "tessellation threshold (subpixels; default: the t the maps were inferred "
                     "with, manifest.json)")
         ->check(CLI::Range(0.25, 1e4));
+    AddTopologyOption(sub, &a.topologyT);
     sub->add_option("--subpixels", a.subpixels,
                     "K: t is in 1/K pixel (default 0: the PEMs' supersampling)")
         ->check(CLI::Range(0, 16));
@@ -122,6 +124,7 @@ json StatsJson(const RenderArgs& a, runtime::Renderer& renderer, const raster::C
         {"view", a.view},
         {"size", {camera.width, camera.height}},
         {"t", s.t > 0.0 ? s.t : renderer.maps().tessT},
+        {"t_topology", s.topologyT.value_or(renderer.maps().topologyT)},
         {"threads", a.threads},
         {"samples", st.samples},
         {"sample_weights", st.sampleWeights},
@@ -175,6 +178,7 @@ int RunRenderCommand() {
     runtime::RenderSettings s;
     s.method = ParseMethod(a.method);
     s.t = a.t, s.spp = a.spp, s.subpixels = a.subpixels, s.layers = a.layers;
+    s.topologyT = a.topologyT;
     s.threads = a.threads;
     s.profile = a.profile;
     if (a.layoutOption->count() > 0) s.staticLayout = CheckedLayout(a, *renderer, s.method);
