@@ -20,10 +20,11 @@ double Since(Clock::time_point t0) {
 }
 
 // The vertex's paths from the eye's ray through it; `surface` (optional): the vertex's surface
-// hit, known without a ray.
+// hit, known without a ray; `fallback` (optional): its surface when the ray misses the group.
 trace::VertexPaths VertexRay(const trace::Tracer& tracer, const trace::EmbreeScene& embree,
                              const glm::vec3& eye, int group, const glm::vec3& position,
-                             const std::optional<trace::Hit>& surface, trace::RayCounts& counts) {
+                             const std::optional<trace::Hit>& surface,
+                             const std::optional<trace::Hit>& fallback, trace::RayCounts& counts) {
     const glm::vec3 d = position - eye;
     const float dist = glm::length(d);
     trace::VertexPaths none;
@@ -40,6 +41,10 @@ trace::VertexPaths VertexRay(const trace::Tracer& tracer, const trace::EmbreeSce
         hit = embree.Intersect(ray, 0.999f * dist);
         if (!hit.valid || tracer.GroupOf(hit.object) != group)
             hit = trace::IncomingHit(tracer, ray, group, counts);
+        if (!hit.valid && fallback) {
+            hit = *fallback;
+            hit.t = dist;
+        }
         if (!hit.valid) return none;
     }
     // Step 2: the two greedy paths from it.
@@ -96,6 +101,26 @@ std::optional<trace::Hit> InputSurface(const LensMesh& mesh, const VertexTriangl
     return std::nullopt;
 }
 
+// A point on input edge (a, b) seen from the eye: the first triangle holding the edge, in mesh
+// order, that faces the eye, at the point's barycentric weights.
+std::optional<trace::Hit> EdgeSurface(const LensMesh& mesh, const VertexTriangles& vt,
+                                      const trace::EdgeMidpoint& at, const glm::vec3& position,
+                                      const glm::vec3& eye) {
+    for (uint32_t k = vt.start[at.a]; k < vt.start[at.a + 1]; ++k) {
+        const uint32_t i = vt.tri[k];
+        const glm::uvec3 t = mesh.triangles[i];
+        if (t.x != at.b && t.y != at.b && t.z != at.b) continue;
+        // Weight of corner c: 1 − s at a, s at b, 0 at the third corner.
+        const auto weight = [&](uint32_t c) {
+            return static_cast<float>(c == at.a ? 1.0 - at.s : c == at.b ? at.s : 0.0);
+        };
+        if (std::optional<trace::Hit> hit =
+                TriangleSurface(mesh, i, weight(t.y), weight(t.z), position, eye))
+            return hit;
+    }
+    return std::nullopt;
+}
+
 }  // namespace
 
 LensMesh GroupMesh(const trace::Scene& scene, int group) {
@@ -130,10 +155,12 @@ LensPaths TraceLensPaths(const trace::Tracer& tracer, const trace::EmbreeScene& 
     in.project = trace::CameraProjection(camera, options.supersampling);
     in.backFacing = backFacing;
     const VertexTriangles vertexTriangles(mesh);
-    auto evaluate = [&](const glm::vec3& p, const std::optional<trace::Hit>& surface) {
+    auto evaluate = [&](const glm::vec3& p, const std::optional<trace::Hit>& surface,
+                        const std::optional<trace::Hit>& fallback = std::nullopt) {
         const auto ts = Clock::now();
         trace::RayCounts counts;
-        trace::VertexPaths paths = VertexRay(tracer, embree, camera.eye, group, p, surface, counts);
+        trace::VertexPaths paths =
+            VertexRay(tracer, embree, camera.eye, group, p, surface, fallback, counts);
         traceNs += static_cast<uint64_t>(
             std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - ts).count());
         primary += counts.primary;
@@ -148,6 +175,10 @@ LensPaths TraceLensPaths(const trace::Tracer& tracer, const trace::EmbreeScene& 
     in.evaluateMidpoint = [&](const glm::vec3& p, const glm::vec3&, const trace::MeshPoint& at) {
         return evaluate(p, TriangleSurface(mesh, at.triangle, static_cast<float>(at.u),
                                            static_cast<float>(at.v), p, camera.eye));
+    };
+    // On an input edge the eye's ray grazes past the mesh at a silhouette: the edge's surface.
+    in.evaluateEdge = [&](const glm::vec3& p, const glm::vec3&, const trace::EdgeMidpoint& at) {
+        return evaluate(p, std::nullopt, EdgeSurface(mesh, vertexTriangles, at, p, camera.eye));
     };
     trace::TessOptions tess = options.tess;
     if (!options.adaptive) tess.maxDepth = 0;

@@ -166,6 +166,7 @@ class Refiner {
     void Split3(const Tri& r, const Bary& at, int depth);
     void Split4(const Tri& r, const Bary& at, int depth);
     uint32_t Midpoint(uint32_t u, uint32_t v, const glm::dvec2& au, const glm::dvec2& av);
+    EdgeMidpoint EdgeOf(const glm::dvec2& at) const;
     bool Occluded(uint32_t v);
     double ScreenLength(uint32_t u, uint32_t v) const;
 
@@ -309,11 +310,27 @@ uint32_t Refiner::Midpoint(uint32_t u, uint32_t v, const glm::dvec2& au, const g
     const bool inside = at.x > 0.0 && at.y > 0.0 && at.x + at.y < 1.0;
     if (inside && s_.in.evaluateMidpoint) {
         paths.push_back(s_.in.evaluateMidpoint(position, normal, {input_, at.x, at.y}));
+    } else if (!inside && s_.in.evaluateEdge) {
+        paths.push_back(s_.in.evaluateEdge(position, normal, EdgeOf(at)));
     } else {
         paths.push_back(s_.in.evaluate(position, normal));
     }
     midpoints_.Insert(key, m);
     return m;
+}
+
+// The input edge holding barycentric point `at` (weights of corners 1 and 2, one of the three
+// weights 0) of the input triangle being refined, from its lower-numbered vertex.
+EdgeMidpoint Refiner::EdgeOf(const glm::dvec2& at) const {
+    const glm::uvec3& t = s_.in.triangles[input_];
+    uint32_t from = t.x, to = t.y;
+    double s = at.x;  // corner 0 → corner 1
+    if (at.x == 0.0) {
+        to = t.z, s = at.y;  // corner 0 → corner 2
+    } else if (at.y != 0.0) {
+        from = t.y, to = t.z, s = at.y;  // corner 1 → corner 2 (at.x + at.y == 1)
+    }
+    return from < to ? EdgeMidpoint{from, to, s} : EdgeMidpoint{to, from, 1.0 - s};
 }
 
 bool Refiner::Occluded(uint32_t v) {

@@ -64,10 +64,20 @@ struct MeshPoint {
 };
 // Traces a midpoint inside an input triangle knowing that triangle (e.g. its surface without a
 // primary ray). Midpoints on the input mesh's edges, which a neighbour's refinement may create
-// too, use `evaluate` (a function of the position only, so the result does not depend on which
-// triangle or run created them).
+// too, use `evaluateEdge` (given the edge, not the triangle) or `evaluate` (the position only),
+// so the result does not depend on which triangle or run created them.
 using EvaluateMidpointFn = std::function<VertexPaths(const glm::vec3& position,
                                                      const glm::vec3& normal, const MeshPoint& at)>;
+// Where a midpoint on an input edge lies: at fraction s (an exact dyadic fraction) of the way from
+// input vertex a to input vertex b, a < b — the same whichever triangle's refinement creates it.
+struct EdgeMidpoint {
+    uint32_t a = 0, b = 0;
+    double s = 0.0;
+};
+// Traces a midpoint on an input edge knowing that edge (e.g. its surface when the primary ray
+// grazes past the mesh at a silhouette).
+using EvaluateEdgeFn = std::function<VertexPaths(const glm::vec3& position, const glm::vec3& normal,
+                                                 const EdgeMidpoint& at)>;
 using BackFacingFn = std::function<bool(const TriangleGeometry& triangle)>;
 using OccludedFn = std::function<bool(const glm::vec3& position)>;
 
@@ -79,6 +89,7 @@ struct TessInput {
     EvaluateFn evaluate;                  // required
     EvaluateInputFn evaluateInput;        // optional: input vertices (else evaluate)
     EvaluateMidpointFn evaluateMidpoint;  // optional: midpoints (else evaluate)
+    EvaluateEdgeFn evaluateEdge;          // optional: midpoints on input edges (else evaluate)
     BackFacingFn backFacing;              // optional: empty = every triangle front-facing
     OccludedFn occluded;                  // optional: empty = every vertex visible
 };

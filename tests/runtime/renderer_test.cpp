@@ -199,44 +199,45 @@ TEST(Renderer, FloatMapsAreDrawnUnclamped) {
 // With 3×3 subpixels, a pixel on the lens's border mixes the ray tracer's samples that miss it
 // (trace::RenderPixels, tested on its own) with the lens colour at the samples that hit it: the
 // constant map times F in [0.9, 1], weighted by those samples' share; a pixel none of whose
-// samples hits the lens is the ray tracer's alone.
+// samples hits the lens is the ray tracer's alone. At the maps' t and at t = 1, where the
+// silhouette is refined into midpoints whose eye ray grazes past the mesh (they take their input
+// edge's surface, not F = 0).
 TEST(Renderer, BorderPixelsMixLensAndSurroundingsBySamples) {
     Fixture fx;
     SetOpaqueOuterLayer(&fx);
     Renderer r(fx.scene, fx.Maps(), 2);
     const raster::Camera cam = r.SampleCamera(0);
-    RenderSettings s = Settings(Method::Hybrid);
-    s.subpixels = 3;
-    // The paper's tessellation at t = 5: refined further along the silhouette (t <= 3, or the
-    // topology threshold), midpoints on the sphere mesh's silhouette edges whose eye ray grazes
-    // past the mesh get F = 0 and darken their border pixels below this band (noticed, not
-    // fixed: lens_paths.h, a vertex with no group hit).
-    s.topologyT = 0.0;
-    const RenderedFrame f = r.Render(cam, s);
-    const std::vector<glm::ivec2> border = SilhouettePixels(f.groupOf, cam.width, cam.height);
-    ASSERT_GT(border.size(), 20u);
-    const trace::PixelSamples traced = trace::RenderPixels(r.tracer(), cam, 3, border, 1);
-    const float* map = kOuterColour;
-    int mixed = 0, outside = 0;
-    for (size_t b = 0; b < border.size(); ++b) {
-        int lens = 0;
-        for (size_t k = 0; k < 9; ++k) lens += traced.groups[9 * b + k] >= 0;
-        mixed += lens > 0 && lens < 9;
-        const float* px = f.image.At(border[b].x, border[b].y);
-        const glm::vec3& bg = traced.surroundings[b];
-        if (lens == 0) {
-            ++outside;
-            for (int c = 0; c < 3; ++c) EXPECT_EQ(px[c], bg[c]) << "pixel " << b;
-            continue;
+    for (double t : {0.0, 1.0}) {
+        RenderSettings s = Settings(Method::Hybrid);
+        s.subpixels = 3;
+        s.t = t;
+        const RenderedFrame f = r.Render(cam, s);
+        const std::vector<glm::ivec2> border = SilhouettePixels(f.groupOf, cam.width, cam.height);
+        ASSERT_GT(border.size(), 20u);
+        const trace::PixelSamples traced = trace::RenderPixels(r.tracer(), cam, 3, border, 1);
+        const float* map = kOuterColour;
+        int mixed = 0, outside = 0;
+        for (size_t b = 0; b < border.size(); ++b) {
+            int lens = 0;
+            for (size_t k = 0; k < 9; ++k) lens += traced.groups[9 * b + k] >= 0;
+            mixed += lens > 0 && lens < 9;
+            const float* px = f.image.At(border[b].x, border[b].y);
+            const glm::vec3& bg = traced.surroundings[b];
+            if (lens == 0) {
+                ++outside;
+                for (int c = 0; c < 3; ++c) EXPECT_EQ(px[c], bg[c]) << "pixel " << b;
+                continue;
+            }
+            const float share = static_cast<float>(lens) / 9.0f;
+            for (int c = 0; c < 3; ++c)
+                EXPECT_TRUE(px[c] >= bg[c] + share * (0.9f * map[c] - 1.5f / 255) &&
+                            px[c] <= bg[c] + share * (map[c] + 1.5f / 255))
+                    << "t " << t << " pixel " << b << " (" << lens << " lens samples) channel " << c
+                    << ": " << px[c];
         }
-        const float share = static_cast<float>(lens) / 9.0f;
-        for (int c = 0; c < 3; ++c)
-            EXPECT_TRUE(px[c] >= bg[c] + share * (0.9f * map[c] - 1.5f / 255) &&
-                        px[c] <= bg[c] + share * (map[c] + 1.5f / 255))
-                << "pixel " << b << " (" << lens << " lens samples) channel " << c << ": " << px[c];
+        EXPECT_GT(mixed, 10);   // not vacuous: partly covered pixels
+        EXPECT_GT(outside, 0);  // and background pixels next to the lens
     }
-    EXPECT_GT(mixed, 10);   // not vacuous: partly covered pixels
-    EXPECT_GT(outside, 0);  // and background pixels next to the lens
 }
 
 TEST(Renderer, OpaqueInnerLayerHidesTheOuterOne) {

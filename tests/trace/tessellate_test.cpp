@@ -2,9 +2,9 @@
 // tessellate_test.cpp — adaptive tessellation on planar meshes with analytic fake vertex paths:
 // watertightness after t-junction removal (edge pairing, original boundary, no vertex inside an
 // edge), the split criteria on hand-made paths (topology, 2.9° vs 3.1°, short edges → 1-to-2 and
-// 1-to-3, the finer topology threshold), back-facing and occluded triangles, area preservation, one
-// trace per vertex, interior midpoints traced on their input triangle. Conventions: meshes lie in z
-// = 0 with normals +z; the projection is (x, y) · scale subpixels.
+// 1-to-3, the finer topology threshold), back-facing and occluded triangles, area preservation,
+// one trace per vertex, midpoints traced on their input triangle or input edge.
+// Conventions: meshes lie in z = 0 with normals +z; the projection is (x, y) · scale subpixels.
 #include "trace/tessellate.h"
 
 #include <gtest/gtest.h>
@@ -288,6 +288,53 @@ TEST(Tessellate, InteriorMidpointsKnowTheirTriangle) {
     for (int threads : {2, 3}) {
         const TessellationResult many = Tessellate(in, {.maxDepth = 6, .threads = threads});
         EXPECT_EQ(many.positions, one.positions) << threads;
+        EXPECT_EQ(many.triangles, one.triangles) << threads;
+        ASSERT_EQ(many.paths.size(), one.paths.size());
+        for (size_t v = 0; v < one.paths.size(); ++v) {
+            if (!one.paths[v]) continue;
+            EXPECT_EQ(many.paths[v]->reflection, one.paths[v]->reflection) << v;
+        }
+    }
+    EXPECT_EQ(wrong.load(), 0);
+}
+
+// A midpoint on an input edge is traced knowing the edge — its input vertices a < b and the
+// exact fraction s from a — not the triangle that happened to create it, so neighbours and runs
+// on other threads give it the same paths; `evaluate` then serves no midpoint.
+TEST(Tessellate, EdgeMidpointsKnowTheirEdge) {
+    TessInput in = Grid(6);
+    in.project = Scaled(40.0f);
+    std::atomic<int> byPosition{0}, onEdges{0}, wrong{0};
+    in.evaluate = [&](const glm::vec3& p, const glm::vec3&) {
+        ++byPosition;
+        return RegionPaths(p);
+    };
+    in.evaluateInput = [&](size_t v) { return RegionPaths(in.positions[v]); };
+    in.evaluateMidpoint = [](const glm::vec3& p, const glm::vec3&, const MeshPoint&) {
+        return RegionPaths(p);
+    };
+    std::set<std::pair<uint32_t, uint32_t>> edges;  // the input mesh's, sorted pairs
+    for (const glm::uvec3& t : in.triangles)
+        for (int k = 0; k < 3; ++k) edges.insert(std::minmax(t[k], t[(k + 1) % 3]));
+    in.evaluateEdge = [&](const glm::vec3& p, const glm::vec3&, const EdgeMidpoint& at) {
+        ++onEdges;
+        const glm::dvec3 q = (1.0 - at.s) * glm::dvec3(in.positions.at(at.a)) +
+                             at.s * glm::dvec3(in.positions.at(at.b));
+        if (!(at.a < at.b && at.s > 0.0 && at.s < 1.0 && edges.count({at.a, at.b}) == 1) ||
+            glm::length(q - glm::dvec3(p)) > 1e-6)
+            ++wrong;
+        // Paths depending on the edge: edges from an even vertex turn the exit 2° more.
+        VertexPaths paths = RegionPaths(p);
+        if (at.a % 2 == 0) paths.reflection.exitDir = Rotated(2.0 + 2.0 * static_cast<double>(p.x));
+        return paths;
+    };
+    const TessellationResult one = Tessellate(in, {.maxDepth = 6});
+    EXPECT_GT(onEdges.load(), 0);
+    EXPECT_EQ(wrong.load(), 0);
+    EXPECT_EQ(byPosition.load(), 0);  // every input vertex and midpoint has its own callback
+    ExpectWatertight(in, one);
+    for (int threads : {2, 3}) {
+        const TessellationResult many = Tessellate(in, {.maxDepth = 6, .threads = threads});
         EXPECT_EQ(many.triangles, one.triangles) << threads;
         ASSERT_EQ(many.paths.size(), one.paths.size());
         for (size_t v = 0; v < one.paths.size(); ++v) {
