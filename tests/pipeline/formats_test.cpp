@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <initializer_list>
 #include <iterator>
 #include <limits>
 
@@ -278,6 +279,27 @@ TEST(PemManifest, NonIntegersAndUnknownProfilesAreRefusedNamingTheKey) {
     fs::remove_all(dir);
 }
 
+// Each of `bads` in place of the value of `entry` (a key and value as the manifest in `dir`
+// writes them) makes ReadPemManifest fail naming the file; then the manifest is left without the
+// key, as directories written before it.
+void RefuseValuesThenDrop(const std::string& dir, const std::string& entry,
+                          std::initializer_list<const char*> bads) {
+    const std::string path = (fs::path(dir) / kManifestJson).string();
+    const std::string text = ReadFile(path);
+    const size_t at = text.find(entry);
+    ASSERT_NE(at, std::string::npos) << entry;
+    const std::string name = entry.substr(0, entry.find(':') + 2);  // "\"key\": "
+    for (const char* bad : bads) {
+        std::string t2 = text;
+        t2.replace(at, entry.size(), name + bad);
+        WriteFile(path, t2);
+        EXPECT_EQ(ErrorOf([&] { ReadPemManifest(dir); }).rfind(path + ": ", 0), 0u) << bad;
+    }
+    std::string old = text;
+    old.replace(at, entry.size() + 1, "");  // with its comma
+    WriteFile(path, old);
+}
+
 TEST(PemManifest, LodBiasRoundTripsWithinItsRange) {
     const fs::path dir = FreshDir("pem_manifest_lod_bias");
     const TraceManifest t = SmallTrace(dir, 1);
@@ -287,21 +309,8 @@ TEST(PemManifest, LodBiasRoundTripsWithinItsRange) {
     WritePemManifest(m);
     EXPECT_EQ(ReadPemManifest(m.dir).hardware.lodBias, -2.5f);
     EXPECT_EQ(ReadPemManifest(m.dir).hardware.Sampler().lodBias, -2.5f);
-    const std::string path = (fs::path(m.dir) / kManifestJson).string();
-    const std::string text = ReadFile(path);
-    const std::string key = "\"lod_bias\": -2.5";
-    const size_t at = text.find(key);
-    ASSERT_NE(at, std::string::npos);
-    for (const char* bad : {"-4.5", "4.01", "1e9", "\"x\"", "null"}) {
-        std::string t2 = text;
-        t2.replace(at, key.size(), std::string("\"lod_bias\": ") + bad);
-        WriteFile(path, t2);
-        EXPECT_EQ(ErrorOf([&] { ReadPemManifest(m.dir); }).rfind(path + ": ", 0), 0u) << bad;
-    }
+    RefuseValuesThenDrop(m.dir, "\"lod_bias\": -2.5", {"-4.5", "4.01", "1e9", "\"x\"", "null"});
     // Absent (directories written before the key existed): no bias.
-    std::string old = text;
-    old.replace(at, key.size() + 1, "");
-    WriteFile(path, old);
     EXPECT_EQ(ReadPemManifest(m.dir).hardware.lodBias, 0.0f);
     fs::remove_all(dir);
 }
@@ -318,20 +327,8 @@ TEST(PemManifest, TopologyThresholdRoundTripsAndAbsentMeansTAlone) {
     WritePemManifest(m);
     EXPECT_EQ(ReadPemManifest(m.dir).topologyT, 1.5);
     EXPECT_EQ(LoadMapSet(ReadPemManifest(m.dir)).topologyT, 1.5);
+    RefuseValuesThenDrop(m.dir, "\"t_topology\": 1.5", {"-1", "0.1", "1e5", "\"x\"", "null"});
     const std::string path = (fs::path(m.dir) / kManifestJson).string();
-    const std::string text = ReadFile(path);
-    const std::string key = "\"t_topology\": 1.5";
-    const size_t at = text.find(key);
-    ASSERT_NE(at, std::string::npos);
-    for (const char* bad : {"-1", "0.1", "1e5", "\"x\"", "null"}) {
-        std::string t2 = text;
-        t2.replace(at, key.size(), std::string("\"t_topology\": ") + bad);
-        WriteFile(path, t2);
-        EXPECT_EQ(ErrorOf([&] { ReadPemManifest(m.dir); }).rfind(path + ": ", 0), 0u) << bad;
-    }
-    std::string old = text;
-    old.replace(at, key.size() + 1, "");
-    WriteFile(path, old);
     EXPECT_EQ(ReadPemManifest(m.dir).topologyT, 0.0);
     // 0 (t alone) is written as absent.
     m.topologyT = 0.0;

@@ -261,6 +261,21 @@ TEST(Tessellate, ThreadCountDoesNotChangeResult) {
 // evaluateMidpoint: called for midpoints strictly inside an input triangle, with that triangle
 // and the midpoint's barycentric weights; edge midpoints go to evaluate. Paths that depend on
 // the triangle still give the same result for any thread count.
+// Tessellate(in) at depth 6 on 2 and 3 threads gives `one` (the serial result): the vertices,
+// triangles and each traced vertex's reflection path.
+void ExpectSameOnThreads(const TessInput& in, const TessellationResult& one) {
+    for (int threads : {2, 3}) {
+        const TessellationResult many = Tessellate(in, {.maxDepth = 6, .threads = threads});
+        EXPECT_EQ(many.positions, one.positions) << threads;
+        EXPECT_EQ(many.triangles, one.triangles) << threads;
+        ASSERT_EQ(many.paths.size(), one.paths.size());
+        for (size_t v = 0; v < one.paths.size(); ++v) {
+            if (!one.paths[v]) continue;
+            EXPECT_EQ(many.paths[v]->reflection, one.paths[v]->reflection) << v;
+        }
+    }
+}
+
 TEST(Tessellate, InteriorMidpointsKnowTheirTriangle) {
     TessInput in = Grid(6);
     in.project = Scaled(40.0f);
@@ -285,16 +300,7 @@ TEST(Tessellate, InteriorMidpointsKnowTheirTriangle) {
     EXPECT_GT(interior.load(), 0);
     EXPECT_EQ(wrong.load(), 0);
     ExpectWatertight(in, one);
-    for (int threads : {2, 3}) {
-        const TessellationResult many = Tessellate(in, {.maxDepth = 6, .threads = threads});
-        EXPECT_EQ(many.positions, one.positions) << threads;
-        EXPECT_EQ(many.triangles, one.triangles) << threads;
-        ASSERT_EQ(many.paths.size(), one.paths.size());
-        for (size_t v = 0; v < one.paths.size(); ++v) {
-            if (!one.paths[v]) continue;
-            EXPECT_EQ(many.paths[v]->reflection, one.paths[v]->reflection) << v;
-        }
-    }
+    ExpectSameOnThreads(in, one);
     EXPECT_EQ(wrong.load(), 0);
 }
 
@@ -333,15 +339,7 @@ TEST(Tessellate, EdgeMidpointsKnowTheirEdge) {
     EXPECT_EQ(wrong.load(), 0);
     EXPECT_EQ(byPosition.load(), 0);  // every input vertex and midpoint has its own callback
     ExpectWatertight(in, one);
-    for (int threads : {2, 3}) {
-        const TessellationResult many = Tessellate(in, {.maxDepth = 6, .threads = threads});
-        EXPECT_EQ(many.triangles, one.triangles) << threads;
-        ASSERT_EQ(many.paths.size(), one.paths.size());
-        for (size_t v = 0; v < one.paths.size(); ++v) {
-            if (!one.paths[v]) continue;
-            EXPECT_EQ(many.paths[v]->reflection, one.paths[v]->reflection) << v;
-        }
-    }
+    ExpectSameOnThreads(in, one);
     EXPECT_EQ(wrong.load(), 0);
 }
 
