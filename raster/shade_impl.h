@@ -88,8 +88,9 @@ void ShadeGroup(const FragmentTarget& tg, const Pass& pass, const LaneAttribs& q
     const Frame& frame = tg.frame->frame();
     const bool wantTaps = tg.rows != nullptr;
 
-    // Texture units.
-    std::array<std::array<RgbaF, kLanes>, kMaxUnits> tex{};
+    // Texture units: the lanes of `mask` are written, and only they are read below (zeroing the
+    // whole array, a rep stos per lane group, cost 4 % of the raster benchmark's frame).
+    std::array<std::array<RgbaF, kLanes>, kMaxUnits> tex;
     std::array<PixelTaps, kLanes> taps;  // matrix mode only (set up below)
     if (wantTaps) taps.fill(PixelTaps{});
     for (int u = 0; u < pass.numUnits; ++u) {
