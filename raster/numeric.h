@@ -75,19 +75,25 @@ inline float RoundEvenSmall(float x) {
     return (x + kShift) - kShift;
 }
 
+// x > 0 ? (x < 1 ? x : 1) : +0 (NaN -> 0), as bit selects: without -ffinite-math-only the
+// compilers turn the ternaries into two branches per channel, while the selects vectorise over
+// a pixel's four channels (cmpps, and, blend).
+inline float ClampUnit(float x) {
+    const uint32_t positive = 0u - static_cast<uint32_t>(x > 0.0f);
+    const float low = BitsFloat(FloatBits(x) & positive);
+    const uint32_t below = 0u - static_cast<uint32_t>(low < 1.0f);
+    return BitsFloat((FloatBits(low) & below) | (FloatBits(1.0f) & ~below));
+}
+
 // float -> unorm8 as llvmpipe stores a fragment colour: clamp to [0, 1] (NaN -> 0), multiply
 // by 255 in float, round half to even.
 inline uint8_t UnormFromFloatRne(float x) {
-    const float low = x > 0.0f ? x : 0.0f;    // NaN fails x > 0 -> 0 (maxss, no branch)
-    const float c = low < 1.0f ? low : 1.0f;  // (minss)
-    return static_cast<uint8_t>(RoundEvenSmall(c * 255.0f));
+    return static_cast<uint8_t>(RoundEvenSmall(ClampUnit(x) * 255.0f));
 }
 
 // The D3D rule: clamp, then floor(x * 255 + 0.5) with the product rounded to float first.
 inline uint8_t UnormFromFloatHalfUp(float x) {
-    const float low = x > 0.0f ? x : 0.0f;
-    const float c = low < 1.0f ? low : 1.0f;
-    return static_cast<uint8_t>(std::floor(c * 255.0f + 0.5f));
+    return static_cast<uint8_t>(std::floor(ClampUnit(x) * 255.0f + 0.5f));
 }
 
 // float -> unorm8 with the rounding rule selected (RNE: GL/llvmpipe; half up: D3D).

@@ -77,8 +77,48 @@ unsigned DepthTestLanes(const FragmentTarget& tg, const DepthTest& test, const P
     return passed;
 }
 
-uint8_t ToUnorm(float v, UnormRounding r) {
-    return UnormFromFloat(v, r == UnormRounding::HalfEven);
+// A pixel's four channels as one vector (GCC/Clang vector extensions: SSE2 or NEON), for the
+// fragment colour and its unorm8 conversion: the same IEEE operations per channel as the scalar
+// code, without the per-channel compares and selects (and their branches) the compilers emit
+// for it. The colour is built in registers: four scalar stores read back as one vector stall.
+using F4 = float __attribute__((vector_size(16)));
+using I4 = int32_t __attribute__((vector_size(16)));
+
+F4 ToF4(const RgbaF& v) {
+    F4 r;
+    std::memcpy(&r, v.data(), sizeof r);
+    return r;
+}
+
+RgbaF FromF4(F4 v) {
+    RgbaF r;
+    std::memcpy(r.data(), &v, sizeof v);
+    return r;
+}
+
+// The unorm8 bytes of a fragment colour packed little-endian (red in the low byte):
+// UnormFromFloatRne or UnormFromFloatHalfUp per channel.
+uint32_t PackUnorm(F4 x, UnormRounding r) {
+    static_assert(std::endian::native == std::endian::little);
+    if (r == UnormRounding::HalfEven) {
+        using B16 = uint8_t __attribute__((vector_size(16)));
+        const I4 positive = x > 0.0f;  // ClampUnit: NaN -> 0, then at most 1
+        const F4 low = reinterpret_cast<F4>(reinterpret_cast<I4>(x) & positive);
+        const I4 below = low < 1.0f;
+        const I4 one = reinterpret_cast<I4>(F4{1.0f, 1.0f, 1.0f, 1.0f});
+        const F4 c = reinterpret_cast<F4>((reinterpret_cast<I4>(low) & below) | (one & ~below));
+        constexpr float kShift = 12582912.0f;  // RoundEvenSmall
+        const F4 rounded = (c * 255.0f + kShift) - kShift;
+        const B16 bytes = reinterpret_cast<B16>(__builtin_convertvector(rounded, I4));
+        const B16 low4 =
+            __builtin_shufflevector(bytes, bytes, 0, 4, 8, 12, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0);
+        uint32_t packed;
+        std::memcpy(&packed, &low4, sizeof packed);
+        return packed;
+    }
+    uint32_t packed = 0;
+    for (int c = 0; c < 4; ++c) packed |= uint32_t{UnormFromFloatHalfUp(x[c])} << (8 * c);
+    return packed;
 }
 
 // Shades the covered lanes of one 4x2 group of one triangle with the interpolated attributes
@@ -118,25 +158,23 @@ void ShadeGroup(const FragmentTarget& tg, const Pass& pass, const LaneAttribs& q
         const int x = gx + kLaneDx[l], y = gy + kLaneDy[l];
         const size_t pixel = tg.Index(x, y);
 
-        // Fragment colour: texture(u0) * texture(u1) * colour, left to right.
-        RgbaF src, mod;
-        for (int c = 0; c < 4; ++c) {
-            const float col = qa.a[co + c][l];
-            float m = col;  // what multiplies unit 0's sample
-            float v = col;
-            if (pass.numUnits == 1) v = tex[0][l][c] * col;
-            if (pass.numUnits == 2) {
-                v = (tex[0][l][c] * tex[1][l][c]) * col;
-                m = tex[1][l][c] * col;
-            }
-            src[c] = v;
-            mod[c] = m;
+        // Fragment colour: texture(u0) * texture(u1) * colour, left to right; `m` is what
+        // multiplies unit 0's sample.
+        const F4 col = {qa.a[co][l], qa.a[co + 1][l], qa.a[co + 2][l], qa.a[co + 3][l]};
+        F4 v = col, m = col;
+        if (pass.numUnits == 1) v = ToF4(tex[0][l]) * col;
+        if (pass.numUnits == 2) {
+            const F4 t1 = ToF4(tex[1][l]);
+            v = (ToF4(tex[0][l]) * t1) * col;
+            m = t1 * col;
         }
+        const RgbaF src = FromF4(v);
 
         if (wantTaps) {
             const PixelTaps& lane = taps[static_cast<size_t>(l)];
             AddFragmentRows(
                 tg.matrix, tg.rows, pixel, y, pass, src, [&](MatrixRows::Appender& row) {
+                    const RgbaF mod = FromF4(m);
                     for (int k = 0; k < lane.Count(); ++k)
                         row.Add(lane.At(k).texel, static_cast<double>(lane.At(k).weight), mod);
                 });
@@ -158,17 +196,14 @@ void ShadeGroup(const FragmentTarget& tg, const Pass& pass, const LaneAttribs& q
             for (int c = 0; c < 4; ++c) d[c] = out[c];
         } else {
             uint8_t* d = &tg.image8->rgba[4 * pixel];
-            const UnormRounding r = tg.options.rounding;
-            const Rgba8 s8{ToUnorm(src[0], r), ToUnorm(src[1], r), ToUnorm(src[2], r),
-                           ToUnorm(src[3], r)};
+            const uint32_t packed = PackUnorm(v, tg.options.rounding);
             if (!pass.blend.enabled) {
                 // One 32-bit store from registers (byte stores read back as a word stall).
-                static_assert(std::endian::native == std::endian::little);
-                const uint32_t packed = uint32_t{s8[0]} | uint32_t{s8[1]} << 8 |
-                                        uint32_t{s8[2]} << 16 | uint32_t{s8[3]} << 24;
                 std::memcpy(d, &packed, 4);
                 continue;
             }
+            const Rgba8 s8{static_cast<uint8_t>(packed), static_cast<uint8_t>(packed >> 8),
+                           static_cast<uint8_t>(packed >> 16), static_cast<uint8_t>(packed >> 24)};
             const Rgba8 out = Blend8(pass.blend, s8, {d[0], d[1], d[2], d[3]});
             for (int c = 0; c < 4; ++c) d[c] = out[c];
         }
