@@ -33,6 +33,15 @@ struct LaneAttribs {
 constexpr int kLaneDx[kLanes] = {0, 1, 0, 1, 2, 3, 2, 3};
 constexpr int kLaneDy[kLanes] = {0, 0, 1, 1, 0, 0, 1, 1};
 
+// The lanes (bit l) of the columns in a set of the group's four columns (bit d: column gx + d).
+constexpr std::array<unsigned, 16> kColumnLanes = [] {
+    std::array<unsigned, 16> lanes{};
+    for (unsigned columns = 0; columns < 16; ++columns)
+        for (int l = 0; l < kLanes; ++l)
+            lanes[columns] |= ((columns >> kLaneDx[l]) & 1u) << l;
+    return lanes;
+}();
+
 void InterpolateLanes(const TriangleSetup& t, int gx, int gy, LaneAttribs* q) {
     alignas(32) float x[kLanes], y[kLanes], oow[kLanes];
     for (int l = 0; l < kLanes; ++l) {
@@ -302,11 +311,13 @@ void DrawTriangle(const std::vector<std::vector<PassDraw>>& variants, const Setu
             rowMask |= static_cast<unsigned>(y >= t.y0 && y <= t.y1) << l;
         }
         for (int gx = gx0; gx <= t.x1; gx += 4) {
-            unsigned mask = rowMask;
-            for (int l = 0; l < kLanes; ++l) {
-                const int x = gx + kLaneDx[l];
-                mask &= ~(static_cast<unsigned>(x < t.x0 || x > t.x1) << l);
-            }
+            // Columns gx + d inside the bounding box: d >= x0 - gx (at most 3, as gx >= gx0)
+            // and d <= x1 - gx (at least 0), then their lanes.
+            const int lo = t.x0 - gx, hi = t.x1 - gx;
+            unsigned columns = 0xFu;
+            if (lo > 0) columns &= 0xFu << lo;
+            if (hi < 3) columns &= 0xFu >> (3 - hi);
+            unsigned mask = rowMask & kColumnLanes[columns & 0xFu];
             for (int e = 0; e < 3 && mask; ++e) {
                 const int64_t base =
                     WrapAdd64(WrapSub64(t.edge[e].c, t.edge[e].dcdx * gx), t.edge[e].dcdy * gy);
