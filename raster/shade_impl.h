@@ -37,8 +37,7 @@ constexpr int kLaneDy[kLanes] = {0, 0, 1, 1, 0, 0, 1, 1};
 constexpr std::array<unsigned, 16> kColumnLanes = [] {
     std::array<unsigned, 16> lanes{};
     for (unsigned columns = 0; columns < 16; ++columns)
-        for (int l = 0; l < kLanes; ++l)
-            lanes[columns] |= ((columns >> kLaneDx[l]) & 1u) << l;
+        for (int l = 0; l < kLanes; ++l) lanes[columns] |= ((columns >> kLaneDx[l]) & 1u) << l;
     return lanes;
 }();
 
