@@ -3,8 +3,9 @@
 # with every level, one viewpoint sample (all layers, both terms), 2 threads. Prints
 #  (a) the time to build A (raster's rendering matrix + the stacked system) vs one forward render
 #      of the same passes (the rmse_8bit render), summed over the maps;
-#  (b) the solve time per iteration vs the time to stream A once at this machine's memory
-#      bandwidth (a numpy copy of a 256 MB array; A in CSR: 12 bytes per entry + 8 per row);
+#  (b) the solve time per iteration vs the time to stream A and A^T once each (an iteration's
+#      two products) at this machine's memory bandwidth (a numpy copy of a 256 MB array; each in
+#      CSR: 12 bytes per entry + 8 per row), and vs A alone;
 #  (c) pemref's solve time vs scipy's lsmr on the exported system of the largest map, both to
 #      pemref's objective (+1 %; scipy runs unbounded and unscaled, from 0).
 # Medians of the rounds with min..max; `uptime` first.
