@@ -12,6 +12,10 @@
 #include <cstring>
 #include <vector>
 
+#if defined(__AVX2__)
+#include <immintrin.h>
+#endif
+
 #include "raster/blend.h"
 #include "raster/clip.h"
 #include "raster/depth.h"
@@ -50,6 +54,23 @@ void InterpolateLanes(const TriangleSetup& t, int gx, int gy, LaneAttribs* q) {
     }
     for (int k = 0; k < t.numAttribs; ++k)
         for (int l = 0; l < kLanes; ++l) q->a[k][l] = EvalPlane(t.attr[k], x[l], y[l]) * oow[l];
+}
+
+// Edge values of four lanes (wrapping sums: unsigned) and their tests (-1: true, 0: false).
+using U64x4 = uint64_t __attribute__((vector_size(32)));
+using I64x4 = int64_t __attribute__((vector_size(32)));
+
+// Bit l set where lane l's test (lanes 0-3 in v[0], 4-7 in v[1]) is true.
+unsigned LaneBits(const I64x4 (&v)[2]) {
+#if defined(__AVX2__)
+    return static_cast<unsigned>(
+        _mm256_movemask_pd(_mm256_castsi256_pd(reinterpret_cast<__m256i>(v[0]))) |
+        _mm256_movemask_pd(_mm256_castsi256_pd(reinterpret_cast<__m256i>(v[1]))) << 4);
+#else
+    unsigned bits = 0;
+    for (int l = 0; l < kLanes; ++l) bits |= static_cast<unsigned>(v[l / 4][l % 4] & 1) << l;
+    return bits;
+#endif
 }
 
 // Fragment depth of the eight lanes of a 4x2 group (computed once, shared by every draw).
@@ -343,11 +364,13 @@ void DrawTriangle(const std::vector<std::vector<PassDraw>>& variants, const Setu
     // the edge, one whose value plus the greatest is not positive lies outside (the edge function
     // is linear; the sums cannot wrap while |origin value| < 2^62 and every offset < 2^61).
     int64_t laneOffset[3][kLanes], leastOffset[3], greatestOffset[3];
+    U64x4 offset[3][2];  // laneOffset as two vectors of four lanes
     constexpr int64_t kNoWrap = int64_t{1} << 61;
     bool smallOffsets = true;
     for (int e = 0; e < 3; ++e) {
         for (int l = 0; l < kLanes; ++l)
             laneOffset[e][l] = -t.edge[e].dcdx * kLaneDx[l] + t.edge[e].dcdy * kLaneDy[l];
+        std::memcpy(offset[e], laneOffset[e], sizeof offset[e]);
         leastOffset[e] = *std::min_element(laneOffset[e], laneOffset[e] + kLanes);
         greatestOffset[e] = *std::max_element(laneOffset[e], laneOffset[e] + kLanes);
         smallOffsets &= leastOffset[e] > -kNoWrap && greatestOffset[e] < kNoWrap;
@@ -369,6 +392,7 @@ void DrawTriangle(const std::vector<std::vector<PassDraw>>& variants, const Setu
             if (lo > 0) columns &= 0xFu << lo;
             if (hi < 3) columns &= 0xFu >> (3 - hi);
             unsigned mask = rowMask & kColumnLanes[columns & 0xFu];
+            I64x4 outside[2] = {};  // lanes outside some edge tested lane by lane
             for (int e = 0; e < 3 && mask; ++e) {
                 const int64_t base =
                     WrapAdd64(WrapSub64(t.edge[e].c, t.edge[e].dcdx * gx), t.edge[e].dcdy * gy);
@@ -379,9 +403,13 @@ void DrawTriangle(const std::vector<std::vector<PassDraw>>& variants, const Setu
                         break;
                     }
                 }
-                for (int l = 0; l < kLanes; ++l)
-                    mask &= ~(static_cast<unsigned>(WrapAdd64(base, laneOffset[e][l]) <= 0) << l);
+                // Lane l is outside when WrapAdd64(base, laneOffset[e][l]) <= 0.
+                const uint64_t b = static_cast<uint64_t>(base);
+                const U64x4 bv = {b, b, b, b};
+                for (int h = 0; h < 2; ++h)
+                    outside[h] |= reinterpret_cast<I64x4>(bv + offset[e][h]) <= 0;
             }
+            mask &= ~LaneBits(outside);
             if (mask) DrawGroup(variants, triangles, i, gx, gy, mask, &qa, tests, footprints);
         }
     }
