@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Every speed figure of issue 17 in one command, each pair measured in one run (the scripts it
-# calls alternate the two sides round by round): raster vs llvmpipe at 2 and 1 threads and the
-# softpipe profile vs softpipe (raster_bench.sh), inference (infer_bench.sh: building A vs a
+# calls alternate the two sides round by round): raster vs llvmpipe at 2 and 1 threads on the
+# benchmark frame and the small-triangle frame, and the softpipe profile vs softpipe
+# (raster_bench.sh), inference (infer_bench.sh: building A vs a
 # forward render, an LSMR iteration vs streaming A and A^T, time to pemref's objective vs scipy's
 # lsmr),
 # hybrid frames and the viewer (render_bench.sh, on the demo's PEMs: made first when missing).
@@ -39,6 +40,11 @@ figures = [
     ("raster vs llvmpipe, 2 threads", first(r"ratio pemref/llvmpipe: ([0-9.]+)"), 1.0, "<="),
     ("raster vs llvmpipe, 1 thread",
      first(r"ratio pemref/llvmpipe: ([0-9.]+)", "== raster, llvmpipe profile, 1 thread"), 1.0, "<="),
+    ("raster vs llvmpipe, small triangles, 2 thr",
+     first(r"ratio pemref/llvmpipe \(lens\): ([0-9.]+)"), 1.0, "<="),
+    ("raster vs llvmpipe, small triangles, 1 thr",
+     first(r"ratio pemref/llvmpipe \(lens\): ([0-9.]+)", "== raster, llvmpipe profile, 1 thread"),
+     1.0, "<="),
     ("softpipe profile vs softpipe", first(r"ratio pemref/softpipe: ([0-9.]+)"), 1.0, "<="),
     ("build A / forward render", first(r"\(a\).*ratio ([0-9.]+)"), 2.0, "<="),
     ("LSMR iteration / streaming A and A^T", first(r"\(b\).*ratio ([0-9.]+)"), 1.5, "<="),
@@ -49,8 +55,8 @@ print(f"== verdicts (CPU stolen by the hypervisor over the whole run: "
       f"{100.0 * (s1 - s0) / max(1.0, t1 - t0):.1f}%)")
 for name, value, goal, op in figures:
     if value is None:
-        print(f"{name:38s}  not measured")
+        print(f"{name:44s}  not measured")
         continue
     met = value <= goal
-    print(f"{name:38s} {value:9.2f}  goal {op} {goal:g}: {'met' if met else 'NOT met'}")
+    print(f"{name:44s} {value:9.2f}  goal {op} {goal:g}: {'met' if met else 'NOT met'}")
 PY

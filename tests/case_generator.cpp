@@ -1596,4 +1596,24 @@ Frame BenchmarkFrame(int width, int height, int rings, int segments, int cubeSiz
     return f;
 }
 
+Frame LensFrame(int width, int height, int rings, int segments, int cubeSize) {
+    Frame f = DepthFrame(width, height, DepthFormat::Z24, 1.0f);
+    f.colorFormat = raster::ColorFormat::Rgba32F;
+    const SamplerState trilinear = Sampler(Filter::Linear, MipFilter::Linear, Filter::Linear);
+    f.textures.push_back(FloatTexture(Cube(cubeSize, trilinear, 9101, true), 9102));
+    f.textures.push_back(FloatTexture(Cube(cubeSize, trilinear, 9103, true), 9104));
+    Pass outer = DepthPass(DepthFunc::Less, true);
+    AddSphere(&outer, rings, segments, static_cast<float>(width) / static_cast<float>(height),
+              {0.0f, 0.8f, 6.0f}, {0, 0, 0}, 1.0f, 1.0f);
+    Pass inner = outer;  // the next layer: over, where the outer layer is the visible surface
+    inner.depthTest = DepthTest{DepthFunc::Equal, false};
+    inner.texture[0] = 1;
+    inner.blend.enabled = true;
+    inner.blend.dstRgb = inner.blend.dstAlpha = BlendFactor::OneMinusSrcAlpha;
+    for (Vertex& v : inner.vertices)
+        v.coord[0] = glm::vec3(v.coord[0].z, -v.coord[0].x, v.coord[0].y);
+    f.passes = {outer, inner};
+    return f;
+}
+
 }  // namespace pem::test

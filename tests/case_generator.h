@@ -53,4 +53,11 @@ raster::Frame LayoutSphere(runtime::Parameterization p, int size,
 // `rings` x `segments` quads with reflection vectors, one `cubeSize` cube, trilinear, seamless.
 raster::Frame BenchmarkFrame(int width, int height, int rings, int segments, int cubeSize);
 
+// The small-triangle frame of bench/: what the hybrid renderer's lens passes draw. A UV sphere
+// of `rings` x `segments` quads (both faces; about two pixels a front triangle at 640x480) into
+// an RGBA32F colour and a Z24 depth buffer: the outer layer replacing with depth LESS written,
+// the inner layer premultiplied over with depth EQUAL, each from its own RGBA32F `cubeSize` cube
+// (trilinear, seamless).
+raster::Frame LensFrame(int width, int height, int rings, int segments, int cubeSize);
+
 }  // namespace pem::test

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // gen_cases — writes the conformance corpus (case_generator.h) as case files, one per case, and
-// the benchmark frame as bench.json:  gen_cases OUTDIR [--bench-only | --rgba8-only]
+// the benchmark frames as bench.json and lens.json:  gen_cases OUTDIR [--bench-only | --rgba8-only]
 // (--rgba8-only: the cases whose textures and colour buffer are all RGBA8, what the softpipe
 // profile draws).
 #include <cstdio>
@@ -25,6 +25,9 @@ int main(int argc, char** argv) {
     };
     // 640x480, sky quad + 200x100 UV sphere (40k triangles), 256^2 cube, trilinear, seamless.
     write("bench", pem::test::BenchmarkFrame(640, 480, 100, 200, 256));
+    // 640x480 RGBA32F + Z24, two layer passes over a 200x100 UV sphere of two-pixel triangles,
+    // 128^2 RGBA32F cubes.
+    write("lens", pem::test::LensFrame(640, 480, 100, 200, 128));
     if (benchOnly) return 0;
     int n = 0;
     for (const auto& c : pem::test::ConformanceCases()) {
@@ -34,6 +37,6 @@ int main(int argc, char** argv) {
         write(c.name, c.frame);
         ++n;
     }
-    std::printf("wrote %d cases and bench.json to %s\n", n, dir.c_str());
+    std::printf("wrote %d cases, bench.json and lens.json to %s\n", n, dir.c_str());
     return 0;
 }
