@@ -364,16 +364,19 @@ void DrawTriangle(const std::vector<std::vector<PassDraw>>& variants, const Setu
     // their least and greatest: a group whose origin value plus the least is positive lies inside
     // the edge, one whose value plus the greatest is not positive lies outside (the edge function
     // is linear; the sums cannot wrap while |origin value| < 2^62 and every offset < 2^61).
-    int64_t laneOffset[3][kLanes], leastOffset[3], greatestOffset[3];
-    U64x4 offset[3][2];  // laneOffset as two vectors of four lanes
+    // Lane l's offset is sx * dx + sy * dy (dx 0..3, dy 0..1): by adds, and its extremes at the
+    // group's corners.
+    int64_t leastOffset[3], greatestOffset[3];
+    U64x4 offset[3][2];  // the lanes' offsets as two vectors of four lanes
     constexpr int64_t kNoWrap = int64_t{1} << 61;
     bool smallOffsets = true;
     for (int e = 0; e < 3; ++e) {
-        for (int l = 0; l < kLanes; ++l)
-            laneOffset[e][l] = -t.edge[e].dcdx * kLaneDx[l] + t.edge[e].dcdy * kLaneDy[l];
-        std::memcpy(offset[e], laneOffset[e], sizeof offset[e]);
-        leastOffset[e] = *std::min_element(laneOffset[e], laneOffset[e] + kLanes);
-        greatestOffset[e] = *std::max_element(laneOffset[e], laneOffset[e] + kLanes);
+        const int64_t sx = -t.edge[e].dcdx, sy = t.edge[e].dcdy;
+        const int64_t x2 = sx + sx, x3 = x2 + sx;
+        const int64_t laneOffset[kLanes] = {0, sx, sy, sx + sy, x2, x3, x2 + sy, x3 + sy};
+        std::memcpy(offset[e], laneOffset, sizeof offset[e]);
+        leastOffset[e] = std::min<int64_t>(0, x3) + std::min<int64_t>(0, sy);
+        greatestOffset[e] = std::max<int64_t>(0, x3) + std::max<int64_t>(0, sy);
         smallOffsets &= leastOffset[e] > -kNoWrap && greatestOffset[e] < kNoWrap;
     }
     const int gy0 = t.y0 & ~1, gx0 = t.x0 & ~3;
