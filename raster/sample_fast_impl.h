@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <vector>
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -252,42 +253,43 @@ inline F4x Bilinear(F4x t00, F4x t01, F4x t10, F4x t11, float a, float b) {
 // Filters the live lanes of texture `pt` (of the footprints' shape). An RGBA8 texture's lanes
 // inside a face read its bytes, not the float copy: a quarter of the memory, so more of the
 // levels a minified sphere reads stay in L2 (the raster benchmark frame 5 % faster at two
-// threads; converting each byte through a table instead was 5 % slower).
-void FilterFast(const PreparedTexture& pt, const FastFootprints& f, unsigned live,
-                std::array<RgbaF, kLanes>* colour) {
+// threads; converting each byte through a table instead was 5 % slower). Not inlined: inside
+// DrawBands its per-lane loop spilled and reloaded most of its values (the sky quad 1-2 %
+// faster out of line).
+__attribute__((noinline)) void FilterFast(const PreparedTexture& pt, const FastFootprints& f,
+                                          unsigned live, std::array<RgbaF, kLanes>* colour) {
     const bool bytes = pt.source->format == TexelFormat::Rgba8 && !pt.source->levels[0].empty();
+    const std::vector<float>* levelsF = pt.levelsF.data();
+    const std::vector<uint8_t>* levels8 = pt.source->levels.data();
     for (int slot = 0; slot < f.slots; ++slot) {
         const bool anyCorner = f.anyCorner[slot];
         for (unsigned set = live; set; set &= set - 1) {  // the live lanes, no branch per lane
             const int l = std::countr_zero(set);
             if (slot == 1 && f.frac[l] == 0.0f) continue;
-            const int lv = f.level[slot][l];
-            const float* texels = pt.levelsF[static_cast<size_t>(lv)].data();
+            const auto lv = static_cast<size_t>(f.level[slot][l]);
+            const int32_t sz = f.size[slot][l];
+            const int32_t base = (f.face[l] * sz + f.y0[slot][l]) * sz + f.x0[slot][l];
             F4x v;
             if (f.edge[slot][l]) {
-                v = ToF4x(FilterFootprint({texels, 0}, f.fp[slot][l], anyCorner, 1.0f, nullptr));
+                v = ToF4x(FilterFootprint({levelsF[lv].data(), 0}, f.fp[slot][l], anyCorner, 1.0f,
+                                          nullptr));
+            } else if (anyCorner) {
+                Footprint fp;
+                fp.a = f.a[slot][l];
+                fp.b = f.b[slot][l];
+                fp.texel = {base, base + 1, base + sz, base + sz + 1};
+                v = ToF4x(FilterFootprint({levelsF[lv].data(), 0}, fp, true, 1.0f, nullptr));
+            } else if (bytes) {  // the 8-bit texels: a quarter of the float copy's bytes
+                const uint8_t* t00 = levels8[lv].data() + 4 * static_cast<size_t>(base);
+                F4x t[4];
+                Texels8(t00, &t[0], &t[1]);
+                Texels8(t00 + 4 * static_cast<size_t>(sz), &t[2], &t[3]);
+                v = Bilinear(t[0], t[1], t[2], t[3], f.a[slot][l], f.b[slot][l]);
             } else {
-                const int32_t sz = f.size[slot][l];
-                const int32_t base = (f.face[l] * sz + f.y0[slot][l]) * sz + f.x0[slot][l];
-                const float* t00 = texels + 4 * static_cast<size_t>(base);
+                const float* t00 = levelsF[lv].data() + 4 * static_cast<size_t>(base);
                 const float* t10 = t00 + 4 * static_cast<size_t>(sz);
-                if (anyCorner) {
-                    Footprint fp;
-                    fp.a = f.a[slot][l];
-                    fp.b = f.b[slot][l];
-                    fp.texel = {base, base + 1, base + sz, base + sz + 1};
-                    v = ToF4x(FilterFootprint({texels, 0}, fp, true, 1.0f, nullptr));
-                } else if (bytes) {  // the 8-bit texels: a quarter of the float copy's bytes
-                    const uint8_t* b00 = pt.source->levels[static_cast<size_t>(lv)].data() +
-                                         4 * static_cast<size_t>(base);
-                    F4x t[4];
-                    Texels8(b00, &t[0], &t[1]);
-                    Texels8(b00 + 4 * static_cast<size_t>(sz), &t[2], &t[3]);
-                    v = Bilinear(t[0], t[1], t[2], t[3], f.a[slot][l], f.b[slot][l]);
-                } else {
-                    v = Bilinear(LoadF4(t00), LoadF4(t00 + 4), LoadF4(t10), LoadF4(t10 + 4),
-                                 f.a[slot][l], f.b[slot][l]);
-                }
+                v = Bilinear(LoadF4(t00), LoadF4(t00 + 4), LoadF4(t10), LoadF4(t10 + 4),
+                             f.a[slot][l], f.b[slot][l]);
             }
             float* out = (*colour)[l].data();
             if (slot == 1) v = LerpF4(f.frac[l], LoadF4(out), v);
