@@ -17,7 +17,7 @@
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
-#if defined(__FMA__)
+#if defined(__AVX2__) || defined(__FMA__)
 #include <immintrin.h>
 #endif
 
@@ -158,6 +158,30 @@ struct FastFootprints {
     }
 };
 
+// Whether any of eight floats is > 0 / any of eight ints is not 0: one vector load of what a
+// vector loop just stored (eight scalar loads of a vector store stall store forwarding).
+inline bool AnyPositive(const float* v) {
+#if defined(__AVX2__)
+    const __m256 x = _mm256_load_ps(v);
+    return _mm256_movemask_ps(_mm256_cmp_ps(x, _mm256_setzero_ps(), _CMP_GT_OQ)) != 0;
+#else
+    bool any = false;
+    for (int l = 0; l < kLanes; ++l) any |= v[l] > 0.0f;
+    return any;
+#endif
+}
+
+inline bool AnyNonZero(const int32_t* v) {
+#if defined(__AVX2__)
+    const __m256i x = _mm256_load_si256(reinterpret_cast<const __m256i*>(v));
+    return !_mm256_testz_si256(x, x);
+#else
+    bool any = false;
+    for (int l = 0; l < kLanes; ++l) any |= v[l] != 0;
+    return any;
+#endif
+}
+
 void FastFootprintsOf(const PreparedTexture& pt, const LaneCoords& coords, FastFootprints* f) {
     const Texture& tex = *pt.source;
     const PipeLodState& st = pt.lod;
@@ -170,9 +194,7 @@ void FastFootprintsOf(const PreparedTexture& pt, const LaneCoords& coords, FastF
     CubeLanes(coords, true, n, f->face, s, t, rho2);
     LodLanes(st, rho2, last, f->level[0], f->level[1], f->frac);
 
-    bool anyLerp = false;
-    for (int l = 0; l < kLanes; ++l) anyLerp |= f->frac[l] > 0.0f;
-    f->slots = anyLerp ? 2 : 1;
+    f->slots = AnyPositive(f->frac) ? 2 : 1;
     for (int slot = 0; slot < f->slots; ++slot) {
         // Footprints: texel column/row, fractions and edge flags per lane.
         const int32_t* lev = f->level[slot];
@@ -191,9 +213,8 @@ void FastFootprintsOf(const PreparedTexture& pt, const LaneCoords& coords, FastF
             f->edge[slot][l] = (ix < 0) | (ix + 1 > sz - 1) | (iy < 0) | (iy + 1 > sz - 1);
         }
         // Edge lanes: the general footprint (and the vector-wide corner decision).
-        bool anyEdge = false, anyCorner = false;
-        for (int l = 0; l < kLanes; ++l) anyEdge |= f->edge[slot][l] != 0;
-        if (anyEdge)
+        bool anyCorner = false;
+        if (AnyNonZero(f->edge[slot]))
             for (int l = 0; l < kLanes; ++l)
                 if (f->edge[slot][l]) {
                     f->fp[slot][l] = SeamlessLinear(s[l], t[l], f->face[l], f->size[slot][l]);
