@@ -139,15 +139,20 @@ void LodLanes(const PipeLodState& st, const float* rho2, int last, int32_t* leve
 
 // The filter footprints of eight lanes on a texture shape (size, levels, sampler): level pair,
 // MIP fraction, texel positions, bilinear fractions and seamless edge footprints per slot. They
-// depend on the coordinates and the shape only, so textures of one shape share them.
+// depend on the coordinates and the shape only, so textures of one shape share them. The
+// general footprint of a lane whose bilinear footprint crosses a face edge (`fp`) is made for
+// the lanes a draw reads (`fpLanes`); whether any lane's crosses a corner, a choice for the
+// whole vector, is decided over all eight.
 struct FastFootprints {
     const Texture* shape = nullptr;  // the texture they were computed for
     int slots = 1;
     alignas(32) int32_t face[kLanes], level[2][kLanes];
-    alignas(32) float frac[kLanes];
+    alignas(32) float frac[kLanes], faceS[kLanes], faceT[kLanes];  // face coordinates
     alignas(32) int32_t x0[2][kLanes], y0[2][kLanes], size[2][kLanes], edge[2][kLanes];
+    alignas(32) int32_t corner[2][kLanes];
     alignas(32) float a[2][kLanes], b[2][kLanes];
     std::array<Footprint, kLanes> fp[2];
+    unsigned fpLanes[2] = {0, 0};
     bool anyCorner[2] = {false, false};
 
     // Whether footprints computed for `shape` serve texture t (same size, levels and sampler).
@@ -182,7 +187,21 @@ inline bool AnyNonZero(const int32_t* v) {
 #endif
 }
 
-void FastFootprintsOf(const PreparedTexture& pt, const LaneCoords& coords, FastFootprints* f) {
+// The general footprints of the edge lanes in `live` not made yet.
+void EdgeFootprints(unsigned live, FastFootprints* f) {
+    for (int slot = 0; slot < f->slots; ++slot) {
+        for (unsigned set = live & ~f->fpLanes[slot]; set; set &= set - 1) {
+            const int l = std::countr_zero(set);
+            if (f->edge[slot][l])
+                f->fp[slot][l] =
+                    SeamlessLinear(f->faceS[l], f->faceT[l], f->face[l], f->size[slot][l]);
+        }
+        f->fpLanes[slot] |= live;
+    }
+}
+
+void FastFootprintsOf(const PreparedTexture& pt, const LaneCoords& coords, unsigned live,
+                      FastFootprints* f) {
     const Texture& tex = *pt.source;
     const PipeLodState& st = pt.lod;
     const int last = tex.NumLevels() - 1;
@@ -190,7 +209,9 @@ void FastFootprintsOf(const PreparedTexture& pt, const LaneCoords& coords, FastF
     f->shape = &tex;
 
     // Face, projection and rho^2 per lane, then LOD.
-    alignas(32) float s[kLanes], t[kLanes], rho2[kLanes];
+    float* s = f->faceS;
+    float* t = f->faceT;
+    alignas(32) float rho2[kLanes];
     CubeLanes(coords, true, n, f->face, s, t, rho2);
     LodLanes(st, rho2, last, f->level[0], f->level[1], f->frac);
 
@@ -210,18 +231,14 @@ void FastFootprintsOf(const PreparedTexture& pt, const LaneCoords& coords, FastF
             f->x0[slot][l] = ix;
             f->y0[slot][l] = iy;
             f->size[slot][l] = sz;
-            f->edge[slot][l] = (ix < 0) | (ix + 1 > sz - 1) | (iy < 0) | (iy + 1 > sz - 1);
+            const int32_t offX = (ix < 0) | (ix + 1 > sz - 1), offY = (iy < 0) | (iy + 1 > sz - 1);
+            f->edge[slot][l] = offX | offY;
+            f->corner[slot][l] = offX & offY;  // SeamlessLinear's corner >= 0
         }
-        // Edge lanes: the general footprint (and the vector-wide corner decision).
-        bool anyCorner = false;
-        if (AnyNonZero(f->edge[slot]))
-            for (int l = 0; l < kLanes; ++l)
-                if (f->edge[slot][l]) {
-                    f->fp[slot][l] = SeamlessLinear(s[l], t[l], f->face[l], f->size[slot][l]);
-                    anyCorner |= f->fp[slot][l].corner >= 0;
-                }
-        f->anyCorner[slot] = anyCorner;
+        f->anyCorner[slot] = AnyNonZero(f->corner[slot]);
+        f->fpLanes[slot] = 0;
     }
+    EdgeFootprints(live, f);
 }
 
 using F4x = float __attribute__((vector_size(16)));
@@ -327,7 +344,10 @@ void SampleFastSeamless(const PreparedFrame& frame, int textureIndex, const Lane
     const PreparedTexture& pt = frame.texture(textureIndex);
     FastFootprints local;
     FastFootprints& f = cache ? *cache : local;
-    if (!f.Serves(*pt.source)) FastFootprintsOf(pt, coords, &f);
+    if (!f.Serves(*pt.source))
+        FastFootprintsOf(pt, coords, live, &f);
+    else if (live & ~(f.fpLanes[0] & f.fpLanes[1]))
+        EdgeFootprints(live, &f);
     FilterFast(pt, f, live, colour);
 }
 
