@@ -388,6 +388,13 @@ void DrawTriangle(const std::vector<std::vector<PassDraw>>& variants, const Setu
             const int y = gy + kLaneDy[l];
             rowMask |= static_cast<unsigned>(y >= t.y0 && y <= t.y1) << l;
         }
+        // Edge values at the row's first group origin, then stepped 4 columns a group (wrapping
+        // sums: the values c - dcdx * gx + dcdy * gy).
+        int64_t base[3], step[3];
+        for (int e = 0; e < 3; ++e) {
+            base[e] = WrapAdd64(WrapSub64(t.edge[e].c, t.edge[e].dcdx * gx0), t.edge[e].dcdy * gy);
+            step[e] = WrapMul64(t.edge[e].dcdx, -4);
+        }
         for (int gx = gx0; gx <= t.x1; gx += 4) {
             // Columns gx + d inside the bounding box: d >= x0 - gx (at most 3, as gx >= gx0)
             // and d <= x1 - gx (at least 0), then their lanes.
@@ -398,23 +405,22 @@ void DrawTriangle(const std::vector<std::vector<PassDraw>>& variants, const Setu
             unsigned mask = rowMask & kColumnLanes[columns & 0xFu];
             I64x4 outside[2] = {};  // lanes outside some edge tested lane by lane
             for (int e = 0; e < 3 && mask; ++e) {
-                const int64_t base =
-                    WrapAdd64(WrapSub64(t.edge[e].c, t.edge[e].dcdx * gx), t.edge[e].dcdy * gy);
-                if (smallOffsets && base > -2 * kNoWrap && base < 2 * kNoWrap) {
-                    if (base + leastOffset[e] > 0) continue;  // every lane inside
-                    if (base + greatestOffset[e] <= 0) {      // every lane outside
+                if (smallOffsets && base[e] > -2 * kNoWrap && base[e] < 2 * kNoWrap) {
+                    if (base[e] + leastOffset[e] > 0) continue;  // every lane inside
+                    if (base[e] + greatestOffset[e] <= 0) {      // every lane outside
                         mask = 0;
                         break;
                     }
                 }
                 // Lane l is outside when WrapAdd64(base, laneOffset[e][l]) <= 0.
-                const uint64_t b = static_cast<uint64_t>(base);
+                const auto b = static_cast<uint64_t>(base[e]);
                 const U64x4 bv = {b, b, b, b};
                 for (int h = 0; h < 2; ++h)
                     outside[h] |= reinterpret_cast<I64x4>(bv + offset[e][h]) <= 0;
             }
             mask &= ~LaneBits(outside);
             if (mask) DrawGroup(variants, triangles, i, gx, gy, mask, &qa, tests, footprints);
+            for (int e = 0; e < 3; ++e) base[e] = WrapAdd64(base[e], step[e]);  // next group
         }
     }
 }
