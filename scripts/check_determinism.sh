@@ -43,7 +43,7 @@ for dir in "$out"/gcc-O0 "$out"/gcc-O3 "$out"/clang-O2; do
       --hashes-only --profile softpipe --threads "$threads" >/dev/null
     # RGBA32F colour buffers: the hash of their floats (the goldens hash their 8-bit view).
     mkdir -p "$g/float"
-    for c in "$cases"/f32_*.json "$cases"/fb32_*.json; do
+    for c in "$cases"/f32_*.json "$cases"/fb32_*.json "$cases"/lens.json; do
       echo "$(basename "$c" .json) $(PEM_ISA=$isa "$dir/bin/pemref" raster "$c" --threads "$threads")"
     done > "$g/float/hashes.txt"
     PEM_ISA=$isa "$dir/bin/pemref" golden generate tests/data/golden_suite --out "$g/suite" \
