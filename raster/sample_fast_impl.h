@@ -241,17 +241,18 @@ void FastFootprintsOf(const PreparedTexture& pt, const LaneCoords& coords, unsig
     EdgeFootprints(live, f);
 }
 
-using F4x = float __attribute__((vector_size(16)));
+// A pixel's four channels as one vector (GCC/Clang vector extensions: SSE2 or NEON).
+using F4 = float __attribute__((vector_size(16)));
 
 // The two RGBA8 texels at p as floats, converted as PrepareTexture converts them (c * fl(1/255)):
 // one 8-byte load, the bytes widened to 32-bit lanes, cvtdq2ps.
-inline void Texels8(const uint8_t* p, F4x* t0, F4x* t1) {
+inline void Texels8(const uint8_t* p, F4* t0, F4* t1) {
     const auto k = static_cast<float>(1.0 / 255.0);
 #if defined(__SSE2__)
     const __m128i b = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(p));
     const __m128i z = _mm_setzero_si128(), w = _mm_unpacklo_epi8(b, z);
-    *t0 = reinterpret_cast<F4x>(_mm_cvtepi32_ps(_mm_unpacklo_epi16(w, z))) * k;
-    *t1 = reinterpret_cast<F4x>(_mm_cvtepi32_ps(_mm_unpackhi_epi16(w, z))) * k;
+    *t0 = reinterpret_cast<F4>(_mm_cvtepi32_ps(_mm_unpacklo_epi16(w, z))) * k;
+    *t1 = reinterpret_cast<F4>(_mm_cvtepi32_ps(_mm_unpackhi_epi16(w, z))) * k;
 #else
     for (int c = 0; c < 4; ++c) {
         (*t0)[c] = static_cast<float>(p[c]) * k;
@@ -262,29 +263,29 @@ inline void Texels8(const uint8_t* p, F4x* t0, F4x* t1) {
 
 // LerpF of four channels with one weight: fused per channel as LerpF is (one vfmadd in the
 // AVX2/FMA build; the compilers keep the scalar form channel by channel).
-inline F4x LerpF4(float w, F4x a, F4x b) {
+inline F4 LerpF4(float w, F4 a, F4 b) {
 #if defined(__FMA__)
     return _mm_fmadd_ps(_mm_set1_ps(w), b - a, a);
 #else
-    F4x r;
+    F4 r;
     for (int c = 0; c < 4; ++c) r[c] = LerpF(w, a[c], b[c]);
     return r;
 #endif
 }
 
-inline F4x LoadF4(const float* p) {
-    F4x v;
+inline F4 LoadF4(const float* p) {
+    F4 v;
     std::memcpy(&v, p, sizeof v);
     return v;
 }
 
-inline F4x ToF4x(const RgbaF& c) {
+inline F4 ToF4(const RgbaF& c) {
     return LoadF4(c.data());
 }
 
 // The bilinear filter of one lane inside a face, as FilterFootprint computes it: rows
 // (t00, t01) and (t10, t11) lerped along s with weight a, then along t with weight b.
-inline F4x Bilinear(F4x t00, F4x t01, F4x t10, F4x t11, float a, float b) {
+inline F4 Bilinear(F4 t00, F4 t01, F4 t10, F4 t11, float a, float b) {
     return LerpF4(b, LerpF4(a, t00, t01), LerpF4(a, t10, t11));
 }
 
@@ -307,19 +308,19 @@ __attribute__((noinline)) void FilterFast(const PreparedTexture& pt, const FastF
             const auto lv = static_cast<size_t>(f.level[slot][l]);
             const int32_t sz = f.size[slot][l];
             const int32_t base = (f.face[l] * sz + f.y0[slot][l]) * sz + f.x0[slot][l];
-            F4x v;
+            F4 v;
             if (f.edge[slot][l]) {
-                v = ToF4x(FilterFootprint({levelsF[lv].data(), 0}, f.fp[slot][l], anyCorner, 1.0f,
-                                          nullptr));
+                v = ToF4(FilterFootprint({levelsF[lv].data(), 0}, f.fp[slot][l], anyCorner, 1.0f,
+                                         nullptr));
             } else if (anyCorner) {
                 Footprint fp;
                 fp.a = f.a[slot][l];
                 fp.b = f.b[slot][l];
                 fp.texel = {base, base + 1, base + sz, base + sz + 1};
-                v = ToF4x(FilterFootprint({levelsF[lv].data(), 0}, fp, true, 1.0f, nullptr));
+                v = ToF4(FilterFootprint({levelsF[lv].data(), 0}, fp, true, 1.0f, nullptr));
             } else if (bytes) {  // the 8-bit texels: a quarter of the float copy's bytes
                 const uint8_t* t00 = levels8[lv].data() + 4 * static_cast<size_t>(base);
-                F4x t[4];
+                F4 t[4];
                 Texels8(t00, &t[0], &t[1]);
                 Texels8(t00 + 4 * static_cast<size_t>(sz), &t[2], &t[3]);
                 v = Bilinear(t[0], t[1], t[2], t[3], f.a[slot][l], f.b[slot][l]);

@@ -106,18 +106,11 @@ unsigned DepthTestLanes(const FragmentTarget& tg, const DepthTest& test, const P
     return passed;
 }
 
-// A pixel's four channels as one vector (GCC/Clang vector extensions: SSE2 or NEON), for the
-// fragment colour and its unorm8 conversion: the same IEEE operations per channel as the scalar
-// code, without the per-channel compares and selects (and their branches) the compilers emit
-// for it. The colour is built in registers: four scalar stores read back as one vector stall.
-using F4 = float __attribute__((vector_size(16)));
+// The fragment colour and its unorm8 conversion on F4 (sample_fast_impl.h): the same IEEE
+// operations per channel as the scalar code, without the per-channel compares and selects (and
+// their branches) the compilers emit for it. The colour is built in registers: four scalar
+// stores read back as one vector stall.
 using I4 = int32_t __attribute__((vector_size(16)));
-
-F4 ToF4(const RgbaF& v) {
-    F4 r;
-    std::memcpy(&r, v.data(), sizeof r);
-    return r;
-}
 
 RgbaF FromF4(F4 v) {
     RgbaF r;
